@@ -1,0 +1,60 @@
+// What the solvers see of a model: a smooth total energy (elastic plus the
+// potential of dead loads) over a vector of free unknowns q.
+//
+// The statics solvers look for grad E(q) = 0; the dynamics solvers integrate
+// M q'' + C q' + grad E(q) = 0. Both also need the model's chance to
+// re-express its unknowns around the current configuration between solver
+// iterations (rebase): for the rod linkage this updates the rods' source
+// frames and folds each joint's rotation vector into its reference frame.
+// A rebase moves nothing, so energy() is unchanged, but it changes what the
+// unknowns mean, hence the function being solved.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace xshell {
+
+class Objective {
+ public:
+  virtual ~Objective() = default;
+
+  // Number of free unknowns.
+  virtual Eigen::Index size() const = 0;
+  // Current free unknowns.
+  virtual Eigen::VectorXd get() const = 0;
+  // Moves the model to q (size()). Throws std::domain_error when q is not a
+  // valid configuration (for example a degenerate joint).
+  virtual void set(const Eigen::VectorXd& q) = 0;
+
+  // Total energy at the current configuration.
+  virtual double energy() const = 0;
+  // dE/dq at the current configuration (size()).
+  virtual Eigen::VectorXd gradient() const = 0;
+  // d2E/dq2 at the current configuration: symmetric, both triangles stored,
+  // compressed columns. Its sparsity pattern never changes over the life of
+  // the objective, so symbolic factorizations can be reused.
+  virtual const Eigen::SparseMatrix<double>& hessian() = 0;
+
+  // Per-unknown weights w such that the solve has converged when
+  // max_i |w_i g_i| <= gradient_tolerance (dimensionless).
+  virtual Eigen::VectorXd gradient_weights() const = 0;
+
+  // Lumped (diagonal) mass of every unknown, positive; for dynamics.
+  virtual Eigen::VectorXd mass() const = 0;
+
+  // Re-expresses the unknowns around the current configuration without
+  // moving it. When velocity is given (size()), it is transformed so that
+  // the motion it describes is unchanged.
+  virtual void rebase(Eigen::VectorXd* velocity = nullptr) { (void)velocity; }
+};
+
+}  // namespace xshell
+
+namespace xshell {
+
+// The dimensionless convergence measure max_i |w_i g_i| at the objective's
+// current configuration (0 when there are no free unknowns).
+double gradient_measure(const Objective& objective);
+
+}  // namespace xshell

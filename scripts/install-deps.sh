@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs the Debian packages xshell needs, skipping those already present.
+# Run as root on Debian bookworm (or with sudo available).
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev libsundials-dev libsuitesparse-dev libvtk9-dev
+  doctest-dev nlohmann-json3-dev libcli11-dev
+  xvfb xauth
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all packages present"
+  exit 0
+fi
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+echo "install-deps: installing ${missing[*]}"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
