@@ -219,6 +219,40 @@ void ElasticRod::hessian_triplets(std::vector<Eigen::Triplet<double>>& triplets,
   }
 }
 
+void ElasticRod::add_hessian(Eigen::MatrixXd& hessian) const {
+  for (int j = 0; j < num_edges(); ++j) {
+    const Eigen::Matrix3d h =
+        stretching_hessian(edge(j), rest_length_[j], stiffness_.stretching * stretching_share_[j]);
+    const int a = node_dof(j), b = node_dof(j + 1);
+    hessian.block<3, 3>(a, a) += h;
+    hessian.block<3, 3>(b, b) += h;
+    hessian.block<3, 3>(a, b) -= h;
+    hessian.block<3, 3>(b, a) -= h;
+  }
+  VertexGradient gv;
+  VertexHessian hv;
+  for (int i = 1; i < num_edges(); ++i) {
+    vertex_energy_derivatives(stencil_dofs(i), stencil(i), gv, hv);
+    const int x = node_dof(i - 1), t0 = theta_dof(i - 1);
+    hessian.block<9, 9>(x, x) += hv.block<9, 9>(0, 0);
+    hessian.block<9, 2>(x, t0) += hv.block<9, 2>(0, 9);
+    hessian.block<2, 9>(t0, x) += hv.block<2, 9>(9, 0);
+    hessian.block<2, 2>(t0, t0) += hv.block<2, 2>(9, 9);
+  }
+}
+
+Eigen::VectorXd ElasticRod::lumped_mass() const {
+  Eigen::VectorXd m = Eigen::VectorXd::Zero(num_dofs());
+  for (int j = 0; j < num_edges(); ++j) {
+    const double length = rest_length_[j] * stretching_share_[j];
+    const double half = 0.5 * stiffness_.mass_per_length * length;
+    m.segment<3>(node_dof(j)).array() += half;
+    m.segment<3>(node_dof(j + 1)).array() += half;
+    m[theta_dof(j)] = stiffness_.rotational_inertia_per_length * length;
+  }
+  return m;
+}
+
 Eigen::SparseMatrix<double> ElasticRod::hessian() const {
   std::vector<Eigen::Triplet<double>> triplets;
   hessian_triplets(triplets);

@@ -98,6 +98,13 @@ class ElasticRod {
   Eigen::VectorXd gradient() const;
   void hessian_triplets(std::vector<Eigen::Triplet<double>>& triplets, int offset = 0) const;
   Eigen::SparseMatrix<double> hessian() const;
+  // Adds the Hessian to a dense num_dofs() square matrix.
+  void add_hessian(Eigen::MatrixXd& hessian) const;
+
+  // Lumped masses of the full variables (num_dofs()): each edge's mass
+  // (mass per length x rest length x share) split between its two nodes,
+  // and each theta's rotational inertia (per length x rest length x share).
+  Eigen::VectorXd lumped_mass() const;
 
   // Strains at interior vertex i (1 <= i <= n - 1).
   VertexStrains<double> strains(int i) const;

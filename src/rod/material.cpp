@@ -30,6 +30,7 @@ RodStiffness stiffness(const Material& m) {
   k.twisting = shear_modulus * torsion;
   k.area = area;
   k.mass_per_length = m.density * area;
+  k.rotational_inertia_per_length = m.density * (i_d1 + i_d2);
   return k;
 }
 

@@ -37,6 +37,7 @@ struct RodStiffness {
   double twisting = 0.0;    // GJ, G = E / (2 (1 + nu))
   double area = 0.0;        // A
   double mass_per_length = 0.0;  // density * A
+  double rotational_inertia_per_length = 0.0;  // density * (I_d1 + I_d2)
 };
 
 // Section properties:

@@ -1,0 +1,89 @@
+#include "vtk_series.hpp"
+
+#include <cstdio>
+#include <iostream>
+#include <stdexcept>
+#include <system_error>
+
+#include "atomic_file.hpp"
+#include "frames_file.hpp"
+#include "joints_file.hpp"
+#include "output_error.hpp"
+#include "rods_file.hpp"
+
+namespace xshell {
+
+std::string step_file_name(VtkPart part, int step) {
+  char number[32];
+  std::snprintf(number, sizeof number, "%06d", step);
+  return std::string(part_name(part)) + "_" + number + ".vtp";
+}
+
+VtkSeries::VtkSeries(std::filesystem::path directory, SeriesOptions options)
+    : directory_(std::move(directory)), options_(options) {
+  if (options_.every < 1)
+    throw std::invalid_argument("VTK series: `every` must be at least 1, got " +
+                                std::to_string(options_.every));
+  std::error_code error;
+  std::filesystem::create_directories(directory_, error);
+  if (error) throw OutputError(directory_, error.message());
+  write_pvd();
+}
+
+VtkSeries::~VtkSeries() {
+  try {
+    close();
+  } catch (const std::exception& e) {
+    std::cerr << "xshell: closing the VTK series failed: " << e.what() << '\n';
+  }
+}
+
+bool VtkSeries::write(const Snapshot& snapshot, bool force) {
+  if (closed_) throw std::logic_error("VTK series: write() after close()");
+  ++calls_since_write_;
+  if (!force && calls_since_write_ < options_.every) return false;
+  validate(snapshot);
+
+  const WriteOptions format{options_.format};
+  std::vector<PvdEntry> step;  // the parts written so far
+  auto write_part = [&](VtkPart part, auto&& write_file) {
+    const std::string file = step_file_name(part, steps_written_);
+    write_file(directory_ / file);
+    step.push_back({snapshot.time, part, file});
+  };
+  try {
+    write_part(VtkPart::Rods, [&](const auto& path) { write_rods_file(snapshot, path, format); });
+    write_part(VtkPart::Frames,
+               [&](const auto& path) { write_frames_file(snapshot, path, format); });
+    write_part(VtkPart::Joints,
+               [&](const auto& path) { write_joints_file(snapshot, path, format); });
+    if (options_.solids)
+      write_part(VtkPart::Solids, [&](const auto& path) {
+        write_solids_file(snapshot, path, format, options_.solid);
+      });
+  } catch (...) {
+    // No orphans: the files of an incomplete step leave with it.
+    for (const PvdEntry& entry : step) {
+      std::error_code ignored;
+      std::filesystem::remove(directory_ / entry.file, ignored);
+    }
+    throw;
+  }
+
+  // Only a complete step enters the index.
+  entries_.insert(entries_.end(), step.begin(), step.end());
+  ++steps_written_;
+  calls_since_write_ = 0;
+  write_pvd();
+  return true;
+}
+
+void VtkSeries::close() {
+  if (closed_) return;
+  closed_ = true;
+  write_pvd();
+}
+
+void VtkSeries::write_pvd() const { write_file_atomically(pvd_path(), pvd_text(entries_)); }
+
+}  // namespace xshell

@@ -1,0 +1,194 @@
+#include "rod_linkage.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "model_error.hpp"
+
+namespace xshell {
+
+namespace {
+// Theta that turns an edge's reference frame so that d2 = n.
+double theta_for_normal(const Frame<double>& ref, const Eigen::Vector3d& n) {
+  return std::atan2(-n.dot(ref.d1.values()), n.dot(ref.d2.values()));
+}
+}  // namespace
+
+RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
+    : graph_(graph), options_(options), topology_(build_topology(graph)) {
+  const int n = options.subdivisions;
+  if (n < kMinSubdivisions)
+    throw ModelError("subdivisions must be at least " + std::to_string(kMinSubdivisions) + ", got " +
+                     std::to_string(n));
+  const RodStiffness stiffness = xshell::stiffness(options.material);
+  const int ns = static_cast<int>(topology_.segments.size());
+
+  // Uniform edge length that fills each segment, and the joints' terminal
+  // edge lengths.
+  std::vector<double> edge_length(ns);
+  for (int s = 0; s < ns; ++s) {
+    const SegmentTopology& seg = topology_.segments[s];
+    const int joint_ends = (seg.joint[0] >= 0) + (seg.joint[1] >= 0);
+    edge_length[s] = seg.length / (n - 0.5 * joint_ends);
+  }
+  for (const JointTopology& jt : topology_.joints) {
+    double l[2];
+    for (int x = 0; x < 2; ++x) {
+      l[x] = std::numeric_limits<double>::infinity();
+      for (const SegmentEnd& end : jt.ends[x]) l[x] = std::min(l[x], edge_length[end.segment]);
+    }
+    joints_.emplace_back(graph.vertices[jt.vertex], jt.tangent[0], jt.tangent[1], jt.normal, l[0], l[1]);
+  }
+
+  // Segments: nodes, least-twisted frames, rest state.
+  for (int s = 0; s < ns; ++s) {
+    const SegmentTopology& seg = topology_.segments[s];
+    std::vector<Eigen::Vector3d> nodes(n + 1);
+    int first_free = 0, last_free = n;
+    if (seg.joint[0] >= 0) {
+      const Eigen::Vector3d e = seg.sign[0] * joints_[seg.joint[0]].tangent(seg.label[0]) *
+                                joints_[seg.joint[0]].params()[kLengthA + seg.label[0]];
+      nodes[0] = graph.vertices[seg.vertex[0]] - 0.5 * e;
+      nodes[1] = graph.vertices[seg.vertex[0]] + 0.5 * e;
+      first_free = 1;
+    } else {
+      nodes[0] = graph.vertices[seg.vertex[0]];
+    }
+    if (seg.joint[1] >= 0) {
+      const Eigen::Vector3d e = seg.sign[1] * joints_[seg.joint[1]].tangent(seg.label[1]) *
+                                joints_[seg.joint[1]].params()[kLengthA + seg.label[1]];
+      nodes[n - 1] = graph.vertices[seg.vertex[1]] - 0.5 * e;
+      nodes[n] = graph.vertices[seg.vertex[1]] + 0.5 * e;
+      last_free = n - 1;
+    } else {
+      nodes[n] = graph.vertices[seg.vertex[1]];
+    }
+    for (int k = first_free + 1; k < last_free; ++k) {
+      const double u = double(k - first_free) / double(last_free - first_free);
+      nodes[k] = (1.0 - u) * nodes[first_free] + u * nodes[last_free];
+    }
+    for (int j = 0; j < n; ++j)
+      if ((nodes[j + 1] - nodes[j]).norm() <= 1e-12 * seg.length)
+        throw ModelError("segment " + std::to_string(s) + " (vertices " + std::to_string(seg.vertex[0]) +
+                         "-" + std::to_string(seg.vertex[1]) +
+                         ") is too short for its joints' terminal edges");
+
+    // Twist-free frames, then thetas putting d2 on the joint normals.
+    const Eigen::Vector3d start_d1 =
+        seg.joint[0] >= 0 ? Eigen::Vector3d(joints_[seg.joint[0]].normal().cross(nodes[1] - nodes[0]))
+                          : Eigen::Vector3d::Zero();
+    ElasticRod rod(nodes, stiffness, seg.joint[0] >= 0 ? &start_d1 : nullptr);
+    std::vector<double> thetas(n, 0.0);
+    double theta_start = 0.0, theta_end = 0.0;
+    if (seg.joint[0] >= 0) theta_start = theta_for_normal(rod.reference_frame(0), joints_[seg.joint[0]].normal());
+    if (seg.joint[1] >= 0) theta_end = theta_for_normal(rod.reference_frame(n - 1), joints_[seg.joint[1]].normal());
+    if (seg.joint[0] < 0) theta_start = theta_end;
+    if (seg.joint[1] < 0) theta_end = theta_start;
+    theta_end = theta_start + std::remainder(theta_end - theta_start, 2.0 * M_PI);
+    // Linear in arc length (edge midpoints) between the two end edges.
+    std::vector<double> arc(n, 0.0);
+    for (int j = 1; j < n; ++j) arc[j] = arc[j - 1] + 0.5 * (rod.edge(j - 1).norm() + rod.edge(j).norm());
+    for (int j = 0; j < n; ++j) thetas[j] = theta_start + (theta_end - theta_start) * arc[j] / arc[n - 1];
+    rod.set_configuration(nodes, thetas);
+    rod.update_source_frames();
+    rod.set_rest_state_from_current();
+    if (options.rest_shape == RestShape::Straight) rod.set_rest_straight();
+    if (seg.joint[0] >= 0) rod.set_stretching_share(0, 0.5);
+    if (seg.joint[1] >= 0) rod.set_stretching_share(n - 1, 0.5);
+    rods_.push_back(std::move(rod));
+  }
+
+  // Reduced unknowns.
+  slots_.resize(ns);
+  segment_offset_.resize(ns);
+  int next = 0;
+  for (int s = 0; s < ns; ++s) {
+    const SegmentTopology& seg = topology_.segments[s];
+    const ElasticRod& rod = rods_[s];
+    segment_offset_[s] = next;
+    std::vector<int>& slot = slots_[s];
+    slot.assign(rod.num_dofs(), 0);
+    auto control = [&](int side, int node_a, int theta) {
+      for (int c = 0; c < 3; ++c) {
+        slot[ElasticRod::node_dof(node_a) + c] = -1 - (7 * side + c);
+        slot[ElasticRod::node_dof(node_a + 1) + c] = -1 - (7 * side + 3 + c);
+      }
+      slot[rod.theta_dof(theta)] = -1 - (7 * side + 6);
+    };
+    if (seg.joint[0] >= 0) control(0, 0, 0);
+    if (seg.joint[1] >= 0) control(1, n - 1, n - 1);
+    for (int k = 0; k < 3 * (n + 1); ++k)
+      if (slot[k] == 0) slot[k] = next++;
+    for (int j = 0; j < n; ++j)
+      if (slot[rod.theta_dof(j)] == 0) slot[rod.theta_dof(j)] = next++;
+  }
+  joint_offset_.resize(joints_.size());
+  for (size_t j = 0; j < joints_.size(); ++j) {
+    joint_offset_[j] = next;
+    next += 9;
+  }
+  num_dofs_ = next;
+  // The joints reproduce the terminal edges and thetas just built.
+  set_dofs(dofs());
+}
+
+Eigen::VectorXd RodLinkage::dofs() const {
+  Eigen::VectorXd r(num_dofs_);
+  for (int s = 0; s < num_segments(); ++s) {
+    const Eigen::VectorXd q = rods_[s].dofs();
+    for (int k = 0; k < q.size(); ++k)
+      if (slots_[s][k] >= 0) r[slots_[s][k]] = q[k];
+  }
+  for (int j = 0; j < num_joints(); ++j) r.segment<9>(joint_offset_[j]) = joints_[j].params();
+  return r;
+}
+
+TerminalEdge<double> RodLinkage::terminal(int s, int side) const {
+  const SegmentTopology& seg = topology_.segments[s];
+  const ElasticRod& rod = rods_[s];
+  const int edge = side == 0 ? 0 : rod.num_edges() - 1;
+  return joints_[seg.joint[side]].terminal_edge(seg.label[side], seg.sign[side], rod.source_frames()[edge],
+                                                rod.thetas()[edge]);
+}
+
+void RodLinkage::set_dofs(const Eigen::VectorXd& r) {
+  if (r.size() != num_dofs_) throw std::invalid_argument("RodLinkage::set_dofs: wrong size");
+  for (int j = 0; j < num_joints(); ++j) {
+    const JointParams p = r.segment<9>(joint_offset_[j]);
+    if (!(p[kLengthA] > 0.0 && p[kLengthB] > 0.0) || !p.allFinite())
+      throw std::domain_error("joint at vertex " + std::to_string(topology_.joints[j].vertex) +
+                              ": terminal edge length must stay positive");
+    joints_[j].set_params(p);
+  }
+  for (int s = 0; s < num_segments(); ++s) {
+    ElasticRod& rod = rods_[s];
+    Eigen::VectorXd q = rod.dofs();
+    for (int k = 0; k < q.size(); ++k)
+      if (slots_[s][k] >= 0) q[k] = r[slots_[s][k]];
+    for (int side = 0; side < 2; ++side) {
+      if (topology_.segments[s].joint[side] < 0) continue;
+      const TerminalEdge<double> t = terminal(s, side);
+      const int node = side == 0 ? 0 : rod.num_edges() - 1;
+      q.segment<3>(ElasticRod::node_dof(node)) = t.first.values();
+      q.segment<3>(ElasticRod::node_dof(node + 1)) = t.second.values();
+      q[rod.theta_dof(node)] = t.theta;
+    }
+    rod.set_dofs(q);
+  }
+}
+
+void RodLinkage::update_source_frames() {
+  for (ElasticRod& rod : rods_) rod.update_source_frames();
+}
+
+void RodLinkage::fold_joints() {
+  for (Joint& joint : joints_) joint.fold();
+}
+
+RodEnergy RodLinkage::energy() const {
+  RodEnergy e;
+  for (const ElasticRod& rod : rods_) e += rod.energy();
+  return e;
+}
+
+}  // namespace xshell

@@ -1,0 +1,124 @@
+// A rod linkage (seed sections 1-3 and 5): every graph edge is a segment, a
+// discrete elastic rod of n_s edges; the joints (valence 2-4 vertices) glue
+// segments into full rods and pin two rods together (joint.hpp).
+//
+// Discretization of a segment: its terminal edge at a joint is the joint's
+// edge e_X (times the segment's sign), centred on the joint, so a segment
+// between two joints reaches half an edge past each of them and its n_s
+// edges are as long as the joints' terminal edges allow (l_X is the smallest
+// L / (n_s - k/2) over the segments of rod X at the joint, k the segment's
+// number of joint ends); a free end's node sits on its graph vertex. The two
+// segments of a rod that meet at a joint both own the shared terminal edge,
+// so each gets half its stretching stiffness and half its mass (the
+// reference implementation does the same): a straight rod cut into segments
+// has the energy of the uncut rod. Minimum n_s: 3 (a segment between two
+// joints needs one edge that no joint controls).
+//
+// Rest shape:
+//  - Input: the input is stress-free. With the joints' terminal edges and
+//    normals in place, each segment's frame is the least-twisted one between
+//    its end frames (twist-free transport, thetas interpolated linearly in
+//    arc length between the two joints' values) and rest lengths, rest
+//    curvatures and rest twists are taken from that state.
+//  - Straight: every rod is straight and untwisted at rest (zero rest
+//    curvature and twist), rest lengths from the input, as laths cut straight
+//    from stock; the flat assembly then stores bending.
+//
+// Reduced unknowns, in this order (seed section 3):
+//   for each segment in edge order: its free nodes (x, y, z of the first,
+//     then the next, ...: all nodes but the two of a terminal edge at a
+//     joint), then its free thetas (all but a joint's terminal edge);
+//   then for each joint in vertex order: p (3), omega (3), alpha, l_A, l_B.
+// Energy = sum of the segments' energies; its gradient and Hessian follow by
+// the chain rule through the joints, including the second-derivative terms
+// of the joint-controlled node positions and thetas (seed 4.2 and 5).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "graph.hpp"
+#include "joint.hpp"
+#include "rod/elastic_rod.hpp"
+#include "topology.hpp"
+
+namespace xshell {
+
+enum class RestShape { Input, Straight };
+
+struct LinkageOptions {
+  int subdivisions = 8;  // n_s, edges per segment (>= 3)
+  RestShape rest_shape = RestShape::Input;
+  Material material;
+};
+
+constexpr int kMinSubdivisions = 3;
+
+class RodLinkage {
+ public:
+  // Throws ModelError when the graph cannot be built into a linkage.
+  RodLinkage(const LineGraph& graph, const LinkageOptions& options);
+
+  const LineGraph& graph() const { return graph_; }
+  const LinkageOptions& options() const { return options_; }
+  const LinkageTopology& topology() const { return topology_; }
+  int num_segments() const { return static_cast<int>(rods_.size()); }
+  int num_joints() const { return static_cast<int>(joints_.size()); }
+  const ElasticRod& segment(int s) const { return rods_[s]; }
+  const Joint& joint(int j) const { return joints_[j]; }
+
+  // Reduced unknowns.
+  int num_dofs() const { return num_dofs_; }
+  int segment_dof_offset(int s) const { return segment_offset_[s]; }
+  int joint_dof_offset(int j) const { return joint_offset_[j]; }
+  // Reduced index of a segment's full variable, or -1 when a joint controls it.
+  int reduced_index(int s, int full) const { return slots_[s][full] >= 0 ? slots_[s][full] : -1; }
+  Eigen::VectorXd dofs() const;
+  // Throws std::domain_error for a degenerate configuration (a terminal edge
+  // of zero length).
+  void set_dofs(const Eigen::VectorXd& dofs);
+
+  // Re-expressions of the unknowns that move nothing (see the solvers).
+  void update_source_frames();
+  void fold_joints();
+
+  // Elastic energy.
+  RodEnergy energy() const;
+  // Gradient and Hessian of the elastic energy minus the work of constant
+  // forces on the full variables (one vector per segment, each of its
+  // num_dofs(); null for none): d/dr [E - sum f . v(r)].
+  Eigen::VectorXd gradient(const std::vector<Eigen::VectorXd>* forces = nullptr) const;
+  void hessian_triplets(std::vector<Eigen::Triplet<double>>& triplets,
+                        const std::vector<Eigen::VectorXd>* forces = nullptr) const;
+  Eigen::SparseMatrix<double> hessian(const std::vector<Eigen::VectorXd>* forces = nullptr) const;
+
+  // Diagonal of the pulled-back lumped mass matrix, diag(J^T M J).
+  Eigen::VectorXd lumped_mass() const;
+
+ private:
+  // A segment's local reduced unknowns: its free ones, then the 9 of the
+  // joint at its start, then those at its end (when there are joints).
+  struct LocalMap {
+    std::vector<int> global;  // reduced index of each local unknown
+    Eigen::MatrixXd jacobian;  // full variables x local unknowns
+    std::vector<std::pair<int, int>> joint_blocks;  // (local offset, side) per joint end
+    std::array<Eigen::Matrix<double, 9, 9>, 7> hessians[2];
+    std::array<int, 7> controlled[2];  // full variable of each terminal value, per side
+  };
+  LocalMap local_map(int s, bool with_hessians) const;
+  TerminalEdge<double> terminal(int s, int side) const;
+
+  LineGraph graph_;
+  LinkageOptions options_;
+  LinkageTopology topology_;
+  std::vector<ElasticRod> rods_;
+  std::vector<Joint> joints_;
+  int num_dofs_ = 0;
+  std::vector<int> segment_offset_, joint_offset_;
+  // Per segment and full variable: reduced index (>= 0), or -1 - (7 side + k)
+  // for the k-th terminal value of the joint at that side.
+  std::vector<std::vector<int>> slots_;
+};
+
+}  // namespace xshell

@@ -1,0 +1,314 @@
+#include "topology.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <deque>
+#include <string>
+
+#include "math/rotation.hpp"
+#include "model_error.hpp"
+
+namespace xshell {
+
+namespace {
+
+struct Incidence {
+  int segment;
+  int end;             // 0: the segment starts here, 1: it ends here
+  Eigen::Vector3d away;  // unit direction from the vertex into the segment
+};
+
+struct EndRef {
+  int segment = -1, end = -1;
+  bool valid() const { return segment >= 0; }
+};
+
+std::string vertex_name(int v) { return "vertex " + std::to_string(v); }
+
+// Pairs the straightest two incident segments (valence 3 and 4).
+void pair_segments(const std::vector<Incidence>& inc, std::vector<std::array<EndRef, 2>>& partner) {
+  const int n = static_cast<int>(inc.size());
+  if (n < 3) return;
+  int best_a = 0, best_b = 1;
+  double best = 2.0;
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) {
+      const double d = inc[a].away.dot(inc[b].away);
+      if (d < best) { best = d; best_a = a; best_b = b; }
+    }
+  auto link = [&](int a, int b) {
+    partner[inc[a].segment][inc[a].end] = {inc[b].segment, inc[b].end};
+    partner[inc[b].segment][inc[b].end] = {inc[a].segment, inc[a].end};
+  };
+  link(best_a, best_b);
+  if (n == 4) {
+    int rest[2], k = 0;
+    for (int a = 0; a < 4; ++a)
+      if (a != best_a && a != best_b) rest[k++] = a;
+    link(rest[0], rest[1]);
+  }
+}
+
+std::vector<RodChain> build_rods(int num_segments, const std::vector<std::array<EndRef, 2>>& partner,
+                                 std::vector<int>& rod_of_segment) {
+  std::vector<RodChain> rods;
+  rod_of_segment.assign(num_segments, -1);
+  for (int s0 = 0; s0 < num_segments; ++s0) {
+    if (rod_of_segment[s0] >= 0) continue;
+    // Walk backwards from s0's start to the chain's first segment.
+    int first = s0, first_entry = 0;  // entered at its start: forward
+    for (EndRef p = partner[s0][0]; p.valid();) {
+      if (p.segment == s0) break;  // closed loop
+      first = p.segment;
+      first_entry = 1 - p.end;  // we came into s0 through p.end, so the rod enters p at the other end
+      p = partner[p.segment][first_entry];
+    }
+    RodChain chain;
+    int s = first, entry = first_entry;
+    while (true) {
+      rod_of_segment[s] = static_cast<int>(rods.size());
+      chain.segments.push_back(s);
+      chain.forward.push_back(entry == 0);
+      const EndRef next = partner[s][1 - entry];
+      if (!next.valid() || rod_of_segment[next.segment] >= 0) break;
+      s = next.segment;
+      entry = next.end;
+    }
+    rods.push_back(std::move(chain));
+  }
+  return rods;
+}
+
+Eigen::Vector3d best_fit_normal(const LineGraph& graph, const std::vector<std::vector<int>>& neighbours,
+                                int v, const Eigen::Vector3d& fallback_tangent) {
+  std::vector<int> points = {v};
+  for (int a : neighbours[v]) {
+    points.push_back(a);
+    for (int b : neighbours[a]) points.push_back(b);
+  }
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int p : points) mean += graph.vertices[p];
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (int p : points) cov += (graph.vertices[p] - mean) * (graph.vertices[p] - mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const Eigen::Vector3d values = eig.eigenvalues();
+  // A line-like neighbourhood has no plane: any normal to the rods will do.
+  if (values[1] <= 1e-12 * std::max(values[2], 1e-300)) return any_perpendicular(fallback_tangent);
+  return eig.eigenvectors().col(0);
+}
+
+}  // namespace
+
+LinkageTopology build_topology(const LineGraph& graph) {
+  const int nv = static_cast<int>(graph.vertices.size());
+  const int ns = static_cast<int>(graph.edges.size());
+  LinkageTopology topo;
+  topo.valence = valences(graph);
+
+  std::vector<std::vector<Incidence>> incident(nv);
+  std::vector<std::vector<int>> neighbours(nv);
+  topo.segments.resize(ns);
+  for (int s = 0; s < ns; ++s) {
+    const auto [a, b] = graph.edges[s];
+    const Eigen::Vector3d d = graph.vertices[b] - graph.vertices[a];
+    topo.segments[s].vertex = {a, b};
+    topo.segments[s].length = d.norm();
+    incident[a].push_back({s, 0, d.normalized()});
+    incident[b].push_back({s, 1, -d.normalized()});
+    neighbours[a].push_back(b);
+    neighbours[b].push_back(a);
+  }
+  for (int v = 0; v < nv; ++v) {
+    if (topo.valence[v] == 0) throw ModelError(vertex_name(v) + " has no edges");
+    if (topo.valence[v] > 4)
+      throw ModelError(vertex_name(v) + " has valence " + std::to_string(topo.valence[v]) +
+                       "; a scissor joint joins at most 4 segments");
+  }
+
+  // Glue segments into rods.
+  std::vector<std::array<EndRef, 2>> partner(ns);
+  for (int v = 0; v < nv; ++v) pair_segments(incident[v], partner);
+  std::vector<int> rod_of_segment;
+  topo.rods = build_rods(ns, partner, rod_of_segment);
+  for (int s = 0; s < ns; ++s) topo.segments[s].rod = rod_of_segment[s];
+
+  // Joints with their two rods and base (unoriented) tangents.
+  topo.joint_of_vertex.assign(nv, -1);
+  std::vector<std::array<Eigen::Vector3d, 2>> base_tangent;
+  auto rod_direction = [&](int s) {
+    const RodChain& rod = topo.rods[topo.segments[s].rod];
+    for (size_t k = 0; k < rod.segments.size(); ++k)
+      if (rod.segments[k] == s) return rod.forward[k] ? 1 : -1;
+    return 1;
+  };
+  for (int v = 0; v < nv; ++v) {
+    if (topo.valence[v] < 2) continue;
+    JointTopology joint;
+    joint.vertex = v;
+    int label = 0;
+    std::array<Eigen::Vector3d, 2> tangent;
+    for (const Incidence& in : incident[v]) {
+      const int rod = topo.segments[in.segment].rod;
+      int slot = (joint.rod[0] == rod) ? 0 : (joint.rod[1] == rod ? 1 : -1);
+      if (slot < 0) {
+        if (label > 1) throw ModelError(vertex_name(v) + ": more than two rods meet at this joint");
+        slot = label++;
+        joint.rod[slot] = rod;
+        tangent[slot] = Eigen::Vector3d::Zero();
+      }
+      // Rod-oriented direction of the segment at this vertex.
+      const Eigen::Vector3d seg_dir = in.end == 0 ? in.away : Eigen::Vector3d(-in.away);
+      const int forward = rod_direction(in.segment);
+      tangent[slot] += forward * seg_dir;
+      joint.ends[slot].push_back({in.segment, in.end == 0, forward});
+    }
+    if (joint.rod[0] == joint.rod[1] || label != 2)
+      throw ModelError(vertex_name(v) + ": a rod passes through this joint twice");
+    for (auto& t : tangent) t.normalize();
+    joint.collinear = tangent[0].cross(tangent[1]).norm() < std::sin(kCollinearDegrees * M_PI / 180.0);
+    topo.joint_of_vertex[v] = static_cast<int>(topo.joints.size());
+    topo.joints.push_back(std::move(joint));
+    base_tangent.push_back(tangent);
+  }
+  const int nj = static_cast<int>(topo.joints.size());
+
+  // Raw normals: regular joints from their rods, collinear ones from the
+  // nearest regular joints (sign-aligned), else from a best-fit plane.
+  std::vector<Eigen::Vector3d> normal(nj);
+  for (int j = 0; j < nj; ++j)
+    if (!topo.joints[j].collinear) normal[j] = base_tangent[j][0].cross(base_tangent[j][1]).normalized();
+  for (int j = 0; j < nj; ++j) {
+    if (!topo.joints[j].collinear) continue;
+    const int v0 = topo.joints[j].vertex;
+    std::vector<int> distance(nv, -1);
+    std::deque<int> queue = {v0};
+    distance[v0] = 0;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int found_at = -1;
+    while (!queue.empty()) {
+      const int v = queue.front();
+      queue.pop_front();
+      if (found_at >= 0 && distance[v] > found_at) break;
+      const int k = topo.joint_of_vertex[v];
+      if (v != v0 && k >= 0 && !topo.joints[k].collinear) {
+        found_at = distance[v];
+        sum += (sum.dot(normal[k]) < 0.0 ? -1.0 : 1.0) * normal[k];
+        continue;
+      }
+      for (int w : neighbours[v])
+        if (distance[w] < 0) { distance[w] = distance[v] + 1; queue.push_back(w); }
+    }
+    const Eigen::Vector3d t = base_tangent[j][0];
+    normal[j] = (found_at >= 0 && sum.norm() > 1e-8) ? sum.normalized() : best_fit_normal(graph, neighbours, v0, t);
+    // The rods at a collinear joint must lie in its plane: a normal along
+    // them is no normal.
+    if (std::abs(normal[j].dot(t)) > 0.99) normal[j] = best_fit_normal(graph, neighbours, v0, t);
+    if (std::abs(normal[j].dot(t)) > 0.99) normal[j] = any_perpendicular(t);
+  }
+
+  // Orient the normals consistently, breadth first through the joints.
+  std::vector<std::vector<int>> joint_neighbours(nj);
+  for (const auto& seg : topo.segments) {
+    const int a = topo.joint_of_vertex[seg.vertex[0]], b = topo.joint_of_vertex[seg.vertex[1]];
+    if (a >= 0 && b >= 0) { joint_neighbours[a].push_back(b); joint_neighbours[b].push_back(a); }
+  }
+  std::vector<bool> oriented(nj, false);
+  for (int root = 0; root < nj; ++root) {
+    if (oriented[root]) continue;
+    oriented[root] = true;
+    std::deque<int> queue = {root};
+    while (!queue.empty()) {
+      const int j = queue.front();
+      queue.pop_front();
+      for (int k : joint_neighbours[j]) {
+        if (oriented[k]) continue;
+        if (normal[k].dot(normal[j]) < 0.0) normal[k] = -normal[k];
+        oriented[k] = true;
+        queue.push_back(k);
+      }
+    }
+  }
+
+  // Families (label A or B) and directions of the rods, breadth first
+  // through the regular joints: at a joint with rods r, q and base tangents
+  // tr, tq, s = sign((tr x tq) . n); the rods get opposite labels and
+  // directions o with (t_A x t_B) . n > 0, i.e. o_q = o_r s if r is A, -o_r s
+  // if r is B.
+  const int nr = static_cast<int>(topo.rods.size());
+  std::vector<int> family(nr, -1), direction(nr, 1);
+  std::vector<std::vector<int>> joints_of_rod(nr);
+  for (int j = 0; j < nj; ++j)
+    if (!topo.joints[j].collinear)
+      for (int r : topo.joints[j].rod) joints_of_rod[r].push_back(j);
+  for (int root = 0; root < nr; ++root) {
+    if (family[root] >= 0) continue;
+    family[root] = 0;
+    std::deque<int> queue = {root};
+    while (!queue.empty()) {
+      const int r = queue.front();
+      queue.pop_front();
+      for (int j : joints_of_rod[r]) {
+        const JointTopology& joint = topo.joints[j];
+        const int slot_r = joint.rod[0] == r ? 0 : 1;
+        const int q = joint.rod[1 - slot_r];
+        const double triple = base_tangent[j][slot_r].cross(base_tangent[j][1 - slot_r]).dot(normal[j]);
+        const int s = triple > 0.0 ? 1 : -1;
+        const int want_family = 1 - family[r];
+        const int want_direction = (family[r] == 0 ? 1 : -1) * direction[r] * s;
+        if (family[q] < 0) {
+          family[q] = want_family;
+          direction[q] = want_direction;
+          queue.push_back(q);
+        } else if (family[q] != want_family || direction[q] != want_direction) {
+          throw ModelError(vertex_name(joint.vertex) +
+                           ": the rods cannot be split into two families that open every joint the "
+                           "same way (three rod families, or a non-orientable linkage)");
+        }
+      }
+    }
+  }
+
+  // Apply the directions to the rods, the labels and tangents to the joints.
+  for (int r = 0; r < nr; ++r) {
+    if (direction[r] > 0) continue;
+    RodChain& rod = topo.rods[r];
+    std::reverse(rod.segments.begin(), rod.segments.end());
+    std::reverse(rod.forward.begin(), rod.forward.end());
+    for (size_t k = 0; k < rod.forward.size(); ++k) rod.forward[k] = !rod.forward[k];
+  }
+  for (int j = 0; j < nj; ++j) {
+    JointTopology& joint = topo.joints[j];
+    for (int slot = 0; slot < 2; ++slot) {
+      const int d = direction[joint.rod[slot]];
+      base_tangent[j][slot] *= d;
+      for (SegmentEnd& end : joint.ends[slot]) end.sign *= d;
+    }
+    const Eigen::Vector3d n = normal[j];
+    std::array<Eigen::Vector3d, 2> t;
+    for (int slot = 0; slot < 2; ++slot)
+      t[slot] = (base_tangent[j][slot] - base_tangent[j][slot].dot(n) * n).normalized();
+    bool swap = joint.collinear ? t[0].cross(t[1]).dot(n) < 0.0 : family[joint.rod[0]] != 0;
+    if (swap) {
+      std::swap(joint.ends[0], joint.ends[1]);
+      std::swap(joint.rod[0], joint.rod[1]);
+      std::swap(t[0], t[1]);
+    }
+    joint.tangent = t;
+    joint.normal = n;
+    joint.opening_angle = std::atan2(t[0].cross(t[1]).dot(n), t[0].dot(t[1]));
+    if (!(joint.opening_angle > 0.0 && joint.opening_angle < M_PI))
+      throw ModelError(vertex_name(joint.vertex) + ": its two rods are exactly collinear");
+    for (int slot = 0; slot < 2; ++slot)
+      for (const SegmentEnd& end : joint.ends[slot]) {
+        SegmentTopology& seg = topo.segments[end.segment];
+        const int side = end.at_start ? 0 : 1;
+        seg.joint[side] = j;
+        seg.label[side] = slot;
+        seg.sign[side] = end.sign;
+      }
+  }
+  return topo;
+}
+
+}  // namespace xshell

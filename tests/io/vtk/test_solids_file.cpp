@@ -1,0 +1,156 @@
+// The solids file: rods swept by their cross-sections into closed, outward
+// oriented surfaces.
+#include <doctest/doctest.h>
+#include <vtkCellData.h>
+#include <vtkIdList.h>
+#include <vtkPointData.h>
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cmath>
+#include <map>
+
+#include "demo_snapshot.hpp"
+#include "io/vtk/solids_file.hpp"
+#include "vtk_test_support.hpp"
+
+namespace xshell::test {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Eigen::Vector3d point(vtkPolyData& data, vtkIdType id) {
+  Eigen::Vector3d x;
+  data.GetPoint(id, x.data());
+  return x;
+}
+
+// Closed and consistently oriented: after merging coincident points (the
+// normals filter duplicates points at creases), every directed edge of a
+// triangle appears exactly once and its reverse exactly once. Returns the
+// number of directed edges checked.
+int check_closed_and_oriented(vtkPolyData& data) {
+  std::map<std::array<double, 3>, int> merged;
+  std::vector<int> id_of(static_cast<size_t>(data.GetNumberOfPoints()));
+  for (vtkIdType p = 0; p < data.GetNumberOfPoints(); ++p) {
+    const Eigen::Vector3d x = point(data, p);
+    id_of[static_cast<size_t>(p)] =
+        merged.emplace(std::array<double, 3>{x.x(), x.y(), x.z()}, static_cast<int>(merged.size()))
+            .first->second;
+  }
+  std::map<std::pair<int, int>, int> directed;
+  vtkNew<vtkIdList> cell;
+  for (vtkIdType c = 0; c < data.GetNumberOfCells(); ++c) {
+    data.GetCellPoints(c, cell);
+    REQUIRE(cell->GetNumberOfIds() == 3);
+    for (vtkIdType j = 0; j < 3; ++j)
+      ++directed[{id_of[static_cast<size_t>(cell->GetId(j))],
+                  id_of[static_cast<size_t>(cell->GetId((j + 1) % 3))]}];
+  }
+  int checked = 0;
+  for (const auto& [edge, count] : directed) {
+    CHECK(count == 1);
+    const auto reverse = directed.find({edge.second, edge.first});
+    CHECK((reverse != directed.end() && reverse->second == 1));
+    ++checked;
+  }
+  return checked;
+}
+
+// Divergence theorem: V = sum over triangles of p0 . (p1 x p2) / 6; positive
+// for outward orientation.
+double signed_volume(vtkPolyData& data) {
+  double volume = 0.0;
+  vtkNew<vtkIdList> cell;
+  for (vtkIdType c = 0; c < data.GetNumberOfCells(); ++c) {
+    data.GetCellPoints(c, cell);
+    volume += point(data, cell->GetId(0))
+                  .dot(point(data, cell->GetId(1)).cross(point(data, cell->GetId(2)))) /
+              6.0;
+  }
+  return volume;
+}
+
+}  // namespace
+
+TEST_CASE("solids file: closed oriented surfaces, one triangle set per rod") {
+  const Snapshot snapshot = demo_snapshot(0.0, 0.3);
+  for (VtkFormat format : {VtkFormat::Binary, VtkFormat::Ascii}) {
+    ScratchDir dir("solids");
+    const auto path = dir.path() / "solids.vtp";
+    write_solids_file(snapshot, path, {format}, {});
+    const auto data = read_polydata(path);
+
+    // Rod 7: rectangle (4 corners), 8 edges; rod 9: 12-gon, 6 edges.
+    const vtkIdType triangles_a = 2 * 8 * 4 + 2 * 4, triangles_b = 2 * 6 * 12 + 2 * 12;
+    REQUIRE(data->GetNumberOfPolys() == triangles_a + triangles_b);
+    REQUIRE(data->GetNumberOfCells() == triangles_a + triangles_b);
+    // Ring points and cap centres, plus the copies made at creases.
+    CHECK(data->GetNumberOfPoints() >= 9 * 4 + 2 + 7 * 12 + 2);
+
+    int checks = 0;
+    vtkDataArray* rod_id = data->GetCellData()->GetArray("rod_id");
+    REQUIRE(rod_id);
+    for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c)
+      XSHELL_COUNTED_CHECK(checks, rod_id->GetTuple1(c) == (c < triangles_a ? 7 : 9));
+
+    vtkDataArray* normals = data->GetPointData()->GetArray("Normals");
+    REQUIRE(normals);
+    REQUIRE(data->GetPointData()->GetArray("bending_density"));
+    for (vtkIdType p = 0; p < data->GetNumberOfPoints(); ++p)
+      XSHELL_COUNTED_CHECK(checks, std::abs(tuple3(*normals, p).norm() - 1.0) < 1e-6);
+
+    const int edges = check_closed_and_oriented(*data);
+    CHECK(edges == 3 * (triangles_a + triangles_b));
+    CHECK(signed_volume(*data) > 0.0);
+    CHECK(checks == data->GetNumberOfCells() + data->GetNumberOfPoints());
+  }
+}
+
+TEST_CASE("solids file: a straight rod is an exact prism with outward normals") {
+  const Eigen::Vector3d start(0.2, -0.1, 0.4), end(1.1, 0.5, 0.1);
+  const double length = (end - start).norm();
+  const Eigen::Vector3d centre = 0.5 * (start + end);
+  struct Case {
+    SectionSnapshot section;
+    double area;  // of the swept polygon
+  };
+  const int sides = 12;
+  const Case cases[] = {
+      {{SectionSnapshot::Shape::Rectangle, 0.05, 0.02}, 0.05 * 0.02},
+      {{SectionSnapshot::Shape::Ellipse, 0.06, 0.03},
+       0.5 * sides * 0.03 * 0.015 * std::sin(2 * kPi / sides)},
+  };
+  int checked_cases = 0;
+  for (const Case& c : cases) {
+    CAPTURE(static_cast<int>(c.section.shape));
+    ScratchDir dir("prism");
+    const auto path = dir.path() / "solids.vtp";
+    write_solids_file(straight_rod_snapshot(c.section, start, end, 5), path, {}, {sides, 60.0});
+    const auto data = read_polydata(path);
+    CHECK(signed_volume(*data) == doctest::Approx(c.area * length).epsilon(1e-10));
+    CHECK(check_closed_and_oriented(*data) == 3 * data->GetNumberOfCells());
+
+    // A convex body: the outward normal at p points away from any interior
+    // point, here the centre.
+    vtkDataArray* normals = data->GetPointData()->GetArray("Normals");
+    REQUIRE(normals);
+    int outward = 0;
+    for (vtkIdType p = 0; p < data->GetNumberOfPoints(); ++p)
+      outward += tuple3(*normals, p).dot(point(*data, p) - centre) > 0.0;
+    CHECK(outward == data->GetNumberOfPoints());
+    CHECK(outward > 0);
+    ++checked_cases;
+  }
+  CHECK(checked_cases == 2);
+}
+
+TEST_CASE("solids file: a section without width is rejected") {
+  ScratchDir dir("bad_section");
+  Snapshot snapshot = demo_snapshot();
+  snapshot.rods[1].section.width = 0.0;
+  CHECK_THROWS_AS(write_solids_file(snapshot, dir.path() / "solids.vtp"), std::invalid_argument);
+  CHECK(file_names(dir.path()).empty());
+}
+
+}  // namespace xshell::test
