@@ -230,11 +230,22 @@ LinkageTopology build_topology(const LineGraph& graph) {
     }
   }
 
-  // Families (label A or B) and directions of the rods, breadth first
-  // through the regular joints: at a joint with rods r, q and base tangents
-  // tr, tq, s = sign((tr x tq) . n); the rods get opposite labels and
-  // directions o with (t_A x t_B) . n > 0, i.e. o_q = o_r s if r is A, -o_r s
-  // if r is B.
+  // Every joint's normals must agree with its neighbours' after orientation;
+  // where they cannot (a non-orientable linkage), no labelling opens all
+  // joints the same way.
+  for (int j = 0; j < nj; ++j)
+    for (int k : joint_neighbours[j])
+      if (normal[j].dot(normal[k]) < -0.5)
+        throw ModelError(vertex_name(topo.joints[j].vertex) + " and " + vertex_name(topo.joints[k].vertex) +
+                         ": the joint normals cannot be oriented consistently (non-orientable linkage)");
+
+  // Directions of the rods, breadth first through the regular joints. At a
+  // joint with rods r, q and base tangents tr, tq, s = sign((tr x tq) . n).
+  // Giving each rod a family (A or B), the same at all its joints, the
+  // directions o with (t_A x t_B) . n > 0 satisfy o_q = o_r s if r is A and
+  // -o_r s if r is B. Where a rod crosses another twice (curved rods), the
+  // two crossings may ask for opposite directions: the first one reached
+  // wins, and the joint's labels follow its own geometry below.
   const int nr = static_cast<int>(topo.rods.size());
   std::vector<int> family(nr, -1), direction(nr, 1);
   std::vector<std::vector<int>> joints_of_rod(nr);
@@ -252,19 +263,12 @@ LinkageTopology build_topology(const LineGraph& graph) {
         const JointTopology& joint = topo.joints[j];
         const int slot_r = joint.rod[0] == r ? 0 : 1;
         const int q = joint.rod[1 - slot_r];
+        if (family[q] >= 0) continue;
         const double triple = base_tangent[j][slot_r].cross(base_tangent[j][1 - slot_r]).dot(normal[j]);
         const int s = triple > 0.0 ? 1 : -1;
-        const int want_family = 1 - family[r];
-        const int want_direction = (family[r] == 0 ? 1 : -1) * direction[r] * s;
-        if (family[q] < 0) {
-          family[q] = want_family;
-          direction[q] = want_direction;
-          queue.push_back(q);
-        } else if (family[q] != want_family || direction[q] != want_direction) {
-          throw ModelError(vertex_name(joint.vertex) +
-                           ": the rods cannot be split into two families that open every joint the "
-                           "same way (three rod families, or a non-orientable linkage)");
-        }
+        family[q] = 1 - family[r];
+        direction[q] = (family[r] == 0 ? 1 : -1) * direction[r] * s;
+        queue.push_back(q);
       }
     }
   }
@@ -288,8 +292,7 @@ LinkageTopology build_topology(const LineGraph& graph) {
     std::array<Eigen::Vector3d, 2> t;
     for (int slot = 0; slot < 2; ++slot)
       t[slot] = (base_tangent[j][slot] - base_tangent[j][slot].dot(n) * n).normalized();
-    bool swap = joint.collinear ? t[0].cross(t[1]).dot(n) < 0.0 : family[joint.rod[0]] != 0;
-    if (swap) {
+    if (t[0].cross(t[1]).dot(n) < 0.0) {
       std::swap(joint.ends[0], joint.ends[1]);
       std::swap(joint.rod[0], joint.rod[1]);
       std::swap(t[0], t[1]);

@@ -8,14 +8,16 @@
 // are pinned together. Valence-1 vertices are free rod ends.
 //
 // Every rod gets a direction and every joint labels its two rods A and B so
-// that (t_A x t_B) . n > 0 with n the joint normal and t_X the rod's tangent
-// there, oriented along the rod. Labels and directions are propagated breadth
-// first through the rods: a rod carries the same label at all of its joints
-// and the normals of neighbouring joints agree. Then the opening angle
-// alpha = angle(t_A, t_B) in (0, pi) opens every joint the same way: raising
-// alpha everywhere opens the whole linkage. A graph whose rods cannot be split
-// into two such families (three rods meeting in a cycle, a non-orientable
-// surface) is rejected with a message naming a joint of the conflict.
+// that (t_A x t_B) . n > 0, with n the joint normal and t_X the rod's tangent
+// there, oriented along the rod; the opening angle alpha = angle(t_A, t_B)
+// then lies in (0, pi). Normals are oriented breadth first so that
+// neighbouring joints agree (a non-orientable linkage is rejected), and rod
+// directions are propagated breadth first through the joints so that a rod
+// carries the same label at its joints and alpha measures the same opening
+// on both sides of a rod: raising alpha everywhere opens the linkage. Curved
+// rods that cross the same rod twice meet it with opposite orientations at
+// the two crossings; no labelling can agree at both, and the second crossing
+// reached keeps its own geometric labels.
 //
 // Normals: n = t_A x t_B / |t_A x t_B|, except where the two rods are within
 // kCollinearDegrees of collinear (common at valence-2 vertices of real
@@ -34,7 +36,7 @@
 
 namespace xshell {
 
-constexpr double kCollinearDegrees = 10.0;
+constexpr double kCollinearDegrees = 8.0;
 
 // One segment end at a joint.
 struct SegmentEnd {

@@ -47,12 +47,13 @@ ElasticRod::ElasticRod(const std::vector<Eigen::Vector3d>& nodes, std::vector<So
   stretching_share_.assign(n, 1.0);
   rest_kappa_.assign(n + 1, {{{0.0, 0.0}, {0.0, 0.0}}});
   rest_twist_.assign(n + 1, 0.0);
-  // The reference twist of the given frames is their twist up to 2 pi; take
-  // the principal value as the starting hint.
+  // The given frames and thetas fix the reference twist only up to 2 pi:
+  // take the branch on which the material twist theta_i - theta_{i-1} + m_ref
+  // lies in (-pi, pi].
   update_reference_frames();
   for (int i = 1; i < num_edges(); ++i) {
-    const double m = reference_twist_[i];
-    twist_hint_[i] = std::remainder(m, 2.0 * M_PI);
+    const double dtheta = thetas_[i] - thetas_[i - 1];
+    twist_hint_[i] = std::remainder(reference_twist_[i] + dtheta, 2.0 * M_PI) - dtheta;
   }
   update_reference_frames();
   set_rest_state_from_current();

@@ -1,0 +1,347 @@
+#include "config.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "input_error.hpp"
+#include "json_field.hpp"
+
+namespace xshell {
+namespace {
+
+// ---------------------------------------------------------------------------
+// The spelling of every enum in the file
+
+template <typename E>
+using Names = std::vector<std::pair<E, std::string>>;
+
+const Names<RestShape> kRestShapes = {{RestShape::Input, "input"},
+                                      {RestShape::Straight, "straight"}};
+const Names<JointModel> kJointModels = {{JointModel::Rotation, "rotation"},
+                                        {JointModel::EdgeVectors, "edge_vectors"}};
+const Names<CrossSectionShape> kShapes = {{CrossSectionShape::Rectangle, "rectangle"},
+                                          {CrossSectionShape::Ellipse, "ellipse"}};
+const Names<SolverMethod> kMethods = {{SolverMethod::Newton, "newton"},
+                                      {SolverMethod::Dynamics, "dynamics"},
+                                      {SolverMethod::KineticDamping, "kinetic-damping"}};
+const Names<MassModel> kMasses = {{MassModel::Physical, "physical"},
+                                  {MassModel::Fictitious, "fictitious"}};
+const Names<OutputFormat> kFormats = {{OutputFormat::Binary, "binary"},
+                                      {OutputFormat::Ascii, "ascii"}};
+const Names<Fixed> kFixed = {{Fixed::Position, "position"},
+                             {Fixed::X, "x"},
+                             {Fixed::Y, "y"},
+                             {Fixed::Z, "z"},
+                             {Fixed::Orientation, "orientation"},
+                             {Fixed::OpeningAngle, "opening_angle"}};
+
+template <typename E>
+const std::string& name_of(E value, const Names<E>& names) {
+  for (const auto& [v, name] : names)
+    if (v == value) return name;
+  throw std::logic_error("enum value without a name");
+}
+
+// ---------------------------------------------------------------------------
+// Values with a range
+
+double positive(const JsonField& f) {
+  const double x = f.number();
+  if (!(x > 0)) f.fail("must be > 0, got " + f.value().dump());
+  return x;
+}
+
+double non_negative(const JsonField& f) {
+  const double x = f.number();
+  if (!(x >= 0)) f.fail("must be >= 0, got " + f.value().dump());
+  return x;
+}
+
+// In the open interval (lo, hi), spelled `interval` in messages.
+double inside(const JsonField& f, double lo, double hi, const std::string& interval) {
+  const double x = f.number();
+  if (!(x > lo && x < hi)) f.fail("must be in " + interval + ", got " + f.value().dump());
+  return x;
+}
+
+double angle(const JsonField& f) {
+  constexpr double kPi = 3.14159265358979323846;
+  return inside(f, 0, kPi, "(0, pi) radians");
+}
+
+int at_least(const JsonField& f, int lo) {
+  const int n = f.integer();
+  if (n < lo) f.fail("must be >= " + std::to_string(lo) + ", got " + std::to_string(n));
+  return n;
+}
+
+int vertex_index(const JsonField& f) {
+  const int n = f.integer();
+  if (n < 0) f.fail("a vertex index is 0-based and must be >= 0, got " + std::to_string(n));
+  return n;
+}
+
+Toggle toggle(const JsonField& f) {
+  if (f.is_boolean()) return f.boolean() ? Toggle::On : Toggle::Off;
+  if (!f.is_string() || f.string() != "auto")
+    f.fail("expected true, false or \"auto\", got " + f.describe());
+  return Toggle::Auto;
+}
+
+// `text`, a path relative to `base_dir` (the configuration's folder), resolved.
+std::string resolve(const std::string& text, const std::string& base_dir) {
+  const std::filesystem::path path(text);
+  if (base_dir.empty() || path.is_absolute()) return text;
+  return (std::filesystem::path(base_dir) / path).lexically_normal().string();
+}
+
+std::string file_path(const JsonField& f, const std::string& base_dir) {
+  const std::string text = f.string();
+  if (text.empty()) f.fail("must name a file or folder, got an empty string");
+  return resolve(text, base_dir);
+}
+
+// ---------------------------------------------------------------------------
+// Sections
+
+CrossSection read_cross_section(const JsonField& f) {
+  f.check_keys({"shape", "width", "height"});
+  CrossSection c;
+  if (auto shape = f.find("shape")) c.shape = shape->choice(kShapes);
+  c.width = positive(f.require("width"));
+  c.height = positive(f.require("height"));
+  return c;
+}
+
+Material read_material(const JsonField& f) {
+  f.check_keys({"young_modulus", "poisson_ratio", "density", "strength", "cross_section"});
+  Material m;
+  m.young_modulus = positive(f.require("young_modulus"));
+  if (auto nu = f.find("poisson_ratio")) m.poisson_ratio = inside(*nu, -1, 0.5, "(-1, 0.5)");
+  if (auto rho = f.find("density")) m.density = non_negative(*rho);
+  if (auto strength = f.find("strength")) m.strength = positive(*strength);
+  m.cross_section = read_cross_section(f.require("cross_section"));
+  return m;
+}
+
+std::vector<Support> read_supports(const JsonField& f) {
+  std::vector<Support> supports;
+  for (const JsonField& item : f.elements()) {
+    item.check_keys({"vertex", "fix"});
+    Support s;
+    s.vertex = vertex_index(item.require("vertex"));
+    const JsonField fix = item.require("fix");
+    for (const JsonField& entry : fix.elements()) {
+      const Fixed what = entry.choice(kFixed);
+      if (std::find(s.fix.begin(), s.fix.end(), what) != s.fix.end())
+        entry.fail("\"" + name_of(what, kFixed) + "\" is listed twice");
+      s.fix.push_back(what);
+    }
+    if (s.fix.empty())
+      fix.fail(
+          "must list at least one of \"position\", \"x\", \"y\", \"z\", "
+          "\"orientation\", \"opening_angle\"");
+    supports.push_back(s);
+  }
+  return supports;
+}
+
+Loads read_loads(const JsonField& f) {
+  f.check_keys({"gravity", "forces"});
+  Loads loads;
+  if (auto g = f.find("gravity")) loads.gravity = g->vector3();
+  if (auto forces = f.find("forces"))
+    for (const JsonField& item : forces->elements()) {
+      item.check_keys({"vertex", "force"});
+      loads.forces.push_back(
+          {vertex_index(item.require("vertex")), item.require("force").vector3()});
+    }
+  return loads;
+}
+
+SolverOptions read_solver(const JsonField& f) {
+  f.check_keys({"method", "gradient_tolerance", "max_iterations", "mass", "damping", "first_order",
+                "max_steps"});
+  SolverOptions s;
+  if (auto method = f.find("method")) s.method = method->choice(kMethods);
+  if (auto tol = f.find("gradient_tolerance")) s.gradient_tolerance = positive(*tol);
+  if (auto n = f.find("max_iterations")) s.max_iterations = at_least(*n, 1);
+  if (auto mass = f.find("mass")) s.mass = mass->choice(kMasses);
+  if (auto damping = f.find("damping")) {
+    if (damping->is_string() && damping->string() == "auto")
+      s.damping.reset();
+    else if (damping->value().is_number())
+      s.damping = non_negative(*damping);
+    else
+      damping->fail("expected a number >= 0 or \"auto\", got " + damping->describe());
+  }
+  if (auto first_order = f.find("first_order")) s.first_order = first_order->boolean();
+  if (auto n = f.find("max_steps")) s.max_steps = at_least(*n, 1);
+  return s;
+}
+
+OutputOptions read_output(const JsonField* f, const std::string& base_dir) {
+  OutputOptions o;
+  o.directory = resolve("out", base_dir);
+  if (!f) return o;
+  f->check_keys({"directory", "every", "format", "solids", "progress"});
+  if (auto dir = f->find("directory")) o.directory = file_path(*dir, base_dir);
+  if (auto every = f->find("every")) o.every = at_least(*every, 1);
+  if (auto format = f->find("format")) o.format = format->choice(kFormats);
+  if (auto solids = f->find("solids")) o.solids = toggle(*solids);
+  if (auto progress = f->find("progress")) o.progress = toggle(*progress);
+  return o;
+}
+
+Deployment read_deployment(const JsonField& f) {
+  f.check_keys({"average_opening_angle", "joint_angles", "steps"});
+  Deployment d;
+  const auto average = f.find("average_opening_angle");
+  const auto joints = f.find("joint_angles");
+  if (average && joints)
+    f.fail("gives both \"average_opening_angle\" and \"joint_angles\"; give only one");
+  if (!average && !joints)
+    f.fail("needs \"average_opening_angle\" or \"joint_angles\" (exactly one of them)");
+  if (average) {
+    d.target = DeploymentTarget::AverageOpeningAngle;
+    d.average_opening_angle = angle(*average);
+  } else {
+    d.target = DeploymentTarget::JointAngles;
+    for (const JsonField& item : joints->elements()) {
+      item.check_keys({"vertex", "angle"});
+      const JsonField vertex = item.require("vertex");
+      const JointAngle a{vertex_index(vertex), angle(item.require("angle"))};
+      for (const JointAngle& earlier : d.joint_angles)
+        if (earlier.vertex == a.vertex)
+          vertex.fail("vertex " + std::to_string(a.vertex) + " is listed twice");
+      d.joint_angles.push_back(a);
+    }
+    if (d.joint_angles.empty()) joints->fail("must list at least one joint");
+  }
+  if (auto steps = f.find("steps")) d.steps = at_least(*steps, 1);
+  return d;
+}
+
+nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json toggle_json(Toggle t) {
+  if (t == Toggle::Auto) return "auto";
+  return t == Toggle::On;
+}
+
+}  // namespace
+
+Config parse_config(const std::string& text, const std::string& name, const std::string& base_dir) {
+  const nlohmann::json document = parse_json(text, name);
+  const JsonField root(document, "", name);
+  if (!document.is_object())
+    root.fail("the configuration must be a JSON object { ... }, got " + root.describe());
+  root.check_keys({"linkage", "subdivisions", "rest_shape", "joints", "material", "supports",
+                   "loads", "solver", "output", "deployment"});
+  Config c;
+  c.source = name;
+  c.linkage = file_path(root.require("linkage"), base_dir);
+  if (auto n = root.find("subdivisions")) c.subdivisions = at_least(*n, 3);
+  if (auto rest = root.find("rest_shape")) c.rest_shape = rest->choice(kRestShapes);
+  if (auto joints = root.find("joints")) c.joints = joints->choice(kJointModels);
+  c.material = read_material(root.require("material"));
+  if (auto supports = root.find("supports")) c.supports = read_supports(*supports);
+  if (auto loads = root.find("loads")) c.loads = read_loads(*loads);
+  if (auto solver = root.find("solver")) c.solver = read_solver(*solver);
+  const auto output = root.find("output");
+  c.output = read_output(output ? &*output : nullptr, base_dir);
+  if (auto deployment = root.find("deployment")) c.deployment = read_deployment(*deployment);
+  return c;
+}
+
+Config read_config(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw InputError("cannot open configuration file '" + path + "': " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_config(text.str(), path, std::filesystem::path(path).parent_path().string());
+}
+
+void check_vertices(const Config& config, const LineGraph& graph) {
+  const int n = static_cast<int>(graph.vertices.size());
+  auto check = [&](int vertex, const std::string& key) {
+    if (vertex < n) return;
+    throw InputError(config.source + ": " + key + ": vertex " + std::to_string(vertex) +
+                     " is out of range; the linkage has " + std::to_string(n) +
+                     " vertices (0-based indices 0 to " + std::to_string(n - 1) + ")");
+  };
+  for (std::size_t i = 0; i < config.supports.size(); ++i)
+    check(config.supports[i].vertex, "supports[" + std::to_string(i) + "].vertex");
+  for (std::size_t i = 0; i < config.loads.forces.size(); ++i)
+    check(config.loads.forces[i].vertex, "loads.forces[" + std::to_string(i) + "].vertex");
+  if (config.deployment)
+    for (std::size_t i = 0; i < config.deployment->joint_angles.size(); ++i)
+      check(config.deployment->joint_angles[i].vertex,
+            "deployment.joint_angles[" + std::to_string(i) + "].vertex");
+}
+
+nlohmann::json to_json(const Config& c) {
+  nlohmann::json material = {{"young_modulus", c.material.young_modulus},
+                             {"poisson_ratio", c.material.poisson_ratio},
+                             {"density", c.material.density},
+                             {"cross_section",
+                              {{"shape", name_of(c.material.cross_section.shape, kShapes)},
+                               {"width", c.material.cross_section.width},
+                               {"height", c.material.cross_section.height}}}};
+  if (c.material.strength) material["strength"] = *c.material.strength;
+
+  nlohmann::json supports = nlohmann::json::array();
+  for (const Support& s : c.supports) {
+    nlohmann::json fix = nlohmann::json::array();
+    for (Fixed f : s.fix) fix.push_back(name_of(f, kFixed));
+    supports.push_back({{"vertex", s.vertex}, {"fix", fix}});
+  }
+  nlohmann::json forces = nlohmann::json::array();
+  for (const PointForce& f : c.loads.forces)
+    forces.push_back({{"vertex", f.vertex}, {"force", vector_json(f.force)}});
+
+  const SolverOptions& s = c.solver;
+  nlohmann::json j = {
+      {"linkage", c.linkage},
+      {"subdivisions", c.subdivisions},
+      {"rest_shape", name_of(c.rest_shape, kRestShapes)},
+      {"joints", name_of(c.joints, kJointModels)},
+      {"material", material},
+      {"supports", supports},
+      {"loads", {{"gravity", vector_json(c.loads.gravity)}, {"forces", forces}}},
+      {"solver",
+       {{"method", name_of(s.method, kMethods)},
+        {"gradient_tolerance", s.gradient_tolerance},
+        {"max_iterations", s.max_iterations},
+        {"mass", name_of(s.mass, kMasses)},
+        {"damping", s.damping ? nlohmann::json(*s.damping) : nlohmann::json("auto")},
+        {"first_order", s.first_order},
+        {"max_steps", s.max_steps}}},
+      {"output",
+       {{"directory", c.output.directory},
+        {"every", c.output.every},
+        {"format", name_of(c.output.format, kFormats)},
+        {"solids", toggle_json(c.output.solids)},
+        {"progress", toggle_json(c.output.progress)}}}};
+  if (const auto& d = c.deployment) {
+    nlohmann::json deployment = {{"steps", d->steps}};
+    if (d->target == DeploymentTarget::AverageOpeningAngle) {
+      deployment["average_opening_angle"] = d->average_opening_angle;
+    } else {
+      deployment["joint_angles"] = nlohmann::json::array();
+      for (const JointAngle& a : d->joint_angles)
+        deployment["joint_angles"].push_back({{"vertex", a.vertex}, {"angle", a.angle}});
+    }
+    j["deployment"] = deployment;
+  }
+  return j;
+}
+
+}  // namespace xshell

@@ -1,0 +1,179 @@
+// The configuration of a run (`xshell relax CONFIG.json`): a JSON object read
+// into the plain struct Config below. Every key, its default and its unit is
+// documented at its field; this header is the source of the README's table.
+//
+// Units: the model has none of its own, so use one consistent system. Lengths
+// are in the unit of the linkage file; stresses (young_modulus, strength) in
+// force per length^2, density in mass per length^3, gravity in length per
+// time^2, forces in the force unit. With a linkage in millimetres: N, MPa
+// (= N/mm^2), tonne/mm^3 (steel: 7.85e-9) and mm/s^2 (9810).
+//
+// Reading is strict: unknown keys (with the closest valid key suggested),
+// wrong types, missing required keys, out-of-range or non-finite values and
+// malformed JSON each throw one InputError naming the file and the key's JSON
+// path (e.g. "material.cross_section.width", "supports[2].vertex"). Vertex
+// indices are checked against the linkage later, by check_vertices.
+#pragma once
+
+#include <Eigen/Core>
+#include <nlohmann/json_fwd.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "linkage/graph.hpp"
+
+namespace xshell {
+
+// "rest_shape": the rods' stress-free shape.
+enum class RestShape {
+  Input,     // "input": the rods as drawn in the linkage file are unstressed
+  Straight,  // "straight": every rod is straight (and untwisted) at rest
+};
+
+// "joints": how a joint's rotation enters the unknowns.
+enum class JointModel {
+  Rotation,     // "rotation": a rotation of the joint's frame
+  EdgeVectors,  // "edge_vectors": the edge vectors of the rods at the joint
+};
+
+// "material.cross_section.shape".
+enum class CrossSectionShape { Rectangle /* "rectangle" */, Ellipse /* "ellipse" */ };
+
+// "solver.method".
+enum class SolverMethod {
+  Newton,          // "newton": Newton's method on the equilibrium equations
+  Dynamics,        // "dynamics": damped dynamics integrated to rest
+  KineticDamping,  // "kinetic-damping": dynamic relaxation, velocities zeroed at energy peaks
+};
+
+// "solver.mass" (dynamics and kinetic-damping).
+enum class MassModel {
+  Physical,    // "physical": the rods' mass from density and cross-section
+  Fictitious,  // "fictitious": a mass chosen for the fastest stable relaxation
+};
+
+// "output.format" of the VTK files.
+enum class OutputFormat { Binary /* "binary" */, Ascii /* "ascii" */ };
+
+// A switch that may be left to the program: true, false or "auto".
+enum class Toggle { Off /* false */, On /* true */, Auto /* "auto" */ };
+
+// An entry of "supports[].fix": what a support holds in place.
+enum class Fixed {
+  Position,      // "position": the joint's position (x, y and z)
+  X,             // "x": one component of the position
+  Y,             // "y"
+  Z,             // "z"
+  Orientation,   // "orientation": the joint's rotation
+  OpeningAngle,  // "opening_angle": the angle between the joint's two rods
+};
+
+// "material.cross_section" (the same for every rod).
+struct CrossSection {
+  CrossSectionShape shape = CrossSectionShape::Rectangle;  // "shape", default "rectangle"
+  double width = 0;                                        // "width", > 0, required; length
+  double height = 0;                                       // "height", > 0, required; length
+};
+
+// "material".
+struct Material {
+  double young_modulus = 0;        // "young_modulus", > 0, required; stress
+  double poisson_ratio = 0.3;      // "poisson_ratio", in (-1, 0.5), default 0.3
+  double density = 0;              // "density", >= 0, default 0; mass / length^3
+  std::optional<double> strength;  // "strength", > 0, optional; stress, for utilisation reports
+  CrossSection cross_section;      // "cross_section", required
+};
+
+// An element of "supports" (default: none).
+struct Support {
+  int vertex = 0;          // "vertex", >= 0, required; 0-based index into the linkage file
+  std::vector<Fixed> fix;  // "fix", required: non-empty, no duplicates
+};
+
+// An element of "loads.forces".
+struct PointForce {
+  int vertex = 0;                                   // "vertex", >= 0, required
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // "force", [fx, fy, fz], required; force
+};
+
+// "loads".
+struct Loads {
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // "gravity", [gx, gy, gz], default
+                                                      // [0, 0, 0]; length / time^2
+  std::vector<PointForce> forces;                     // "forces", default none
+};
+
+// "solver".
+struct SolverOptions {
+  SolverMethod method = SolverMethod::Newton;  // "method", default "newton"
+  double gradient_tolerance = 1e-6;      // "gradient_tolerance", > 0, default 1e-6; dimensionless
+  int max_iterations = 100;              // "max_iterations", >= 1, default 100 (newton)
+  MassModel mass = MassModel::Physical;  // "mass", default "physical"
+  std::optional<double> damping;         // "damping", >= 0 or "auto" (nullopt, the default);
+                                         // 1 / time
+  bool first_order = false;              // "first_order", default false: integrate the
+                                         // first-order (gradient flow) system instead
+  int max_steps = 5000;                  // "max_steps", >= 1, default 5000 (time steps)
+};
+
+// "output".
+struct OutputOptions {
+  std::string directory;  // "directory", default "out"; relative to the configuration
+                          // file's folder, stored resolved
+  int every = 1;          // "every", >= 1, default 1: write every n-th iteration or step
+  OutputFormat format = OutputFormat::Binary;  // "format", default "binary"
+  Toggle solids = Toggle::Auto;    // "solids", default "auto": also write the rods as solids
+  Toggle progress = Toggle::Auto;  // "progress", default "auto": a progress display (auto:
+                                   // when the output is a terminal)
+};
+
+// An element of "deployment.joint_angles".
+struct JointAngle {
+  int vertex = 0;    // "vertex", >= 0, required
+  double angle = 0;  // "angle", in (0, pi), required; radians
+};
+
+// "deployment", optional: open the linkage to a target in `steps` steps. The
+// object holds exactly one of "average_opening_angle" and "joint_angles".
+enum class DeploymentTarget { AverageOpeningAngle, JointAngles };
+struct Deployment {
+  DeploymentTarget target = DeploymentTarget::AverageOpeningAngle;
+  double average_opening_angle = 0;      // "average_opening_angle", in (0, pi); radians
+  std::vector<JointAngle> joint_angles;  // "joint_angles": non-empty, one entry per vertex
+  int steps = 20;                        // "steps", >= 1, default 20
+};
+
+struct Config {
+  std::string source;    // the configuration's file name (for messages; not a key)
+  std::string linkage;   // "linkage", required: the OBJ line mesh, relative to the
+                         // configuration file's folder, stored resolved
+  int subdivisions = 8;  // "subdivisions", >= 3, default 8: rod edges per graph edge
+  RestShape rest_shape = RestShape::Input;   // "rest_shape", default "input"
+  JointModel joints = JointModel::Rotation;  // "joints", default "rotation"
+  Material material;                         // "material", required
+  std::vector<Support> supports;             // "supports", default none
+  Loads loads;                               // "loads"
+  SolverOptions solver;                      // "solver"
+  OutputOptions output;                      // "output"
+  std::optional<Deployment> deployment;      // "deployment", optional
+};
+
+// Reads the configuration file at `path`; relative paths in it are resolved
+// against the file's folder. Throws InputError.
+Config read_config(const std::string& path);
+
+// Parses configuration `text`; `name` stands for the file in messages and
+// relative paths are joined to `base_dir` (left as they are when it is empty).
+Config parse_config(const std::string& text, const std::string& name, const std::string& base_dir);
+
+// Checks every vertex index of `config` against `graph`; throws InputError
+// naming the key (e.g. "supports[2].vertex") of the first out of range.
+void check_vertices(const Config& config, const LineGraph& graph);
+
+// The resolved configuration with every default filled in, in the file's
+// format (absent optional keys are left out): parse_config of its dump gives
+// the same configuration back.
+nlohmann::json to_json(const Config& config);
+
+}  // namespace xshell

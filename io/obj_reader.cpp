@@ -1,0 +1,334 @@
+#include "obj_reader.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <sstream>
+#include <string_view>
+
+#include "input_error.hpp"
+
+namespace xshell {
+namespace {
+
+// ---------------------------------------------------------------------------
+// Messages
+
+std::string where(const std::string& name, int line) {
+  return name + ":" + std::to_string(line) + ": ";
+}
+
+[[noreturn]] void fail(const std::string& name, int line, const std::string& what) {
+  throw InputError(where(name, line) + what);
+}
+
+// A token as it appears in a message: quoted, shortened if very long.
+std::string quoted(std::string_view token) {
+  constexpr std::size_t kMax = 40;
+  if (token.size() > kMax) return "'" + std::string(token.substr(0, kMax)) + "...'";
+  return "'" + std::string(token) + "'";
+}
+
+std::string vertex_name(int v) { return "vertex " + std::to_string(v) + " (0-based)"; }
+
+std::string vertex_name(int v, int line) {
+  return "vertex " + std::to_string(v) + " (0-based, line " + std::to_string(line) + ")";
+}
+
+std::string position(const Eigen::Vector3d& p) {
+  std::ostringstream s;
+  s.precision(10);
+  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return s.str();
+}
+
+// ---------------------------------------------------------------------------
+// Tokens
+
+std::vector<std::string_view> split(std::string_view text) {
+  std::vector<std::string_view> tokens;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+    std::size_t j = i;
+    while (j < text.size() && !std::isspace(static_cast<unsigned char>(text[j]))) ++j;
+    if (j > i) tokens.push_back(text.substr(i, j - i));
+    i = j;
+  }
+  return tokens;
+}
+
+// Whole-token conversions; from_chars is locale-independent. A leading '+'
+// (which from_chars does not take) is allowed as in C's strtod.
+template <typename T>
+std::from_chars_result parse_number(std::string_view token, T& value) {
+  if (token.size() > 1 && token[0] == '+' && token[1] != '-') token.remove_prefix(1);
+  const char* end = token.data() + token.size();
+  auto result = std::from_chars(token.data(), end, value);
+  if (result.ec == std::errc() && result.ptr != end) result.ec = std::errc::invalid_argument;
+  return result;
+}
+
+// ---------------------------------------------------------------------------
+// Statements
+
+class ObjParser {
+ public:
+  explicit ObjParser(const std::string& name) : name_(name) {}
+
+  void parse_line(std::string_view text, int line) {
+    text = text.substr(0, text.find('#'));
+    const auto tokens = split(text);
+    if (tokens.empty()) return;
+    const std::string_view keyword = tokens[0];
+    if (keyword == "v") return vertex(tokens, line);
+    if (keyword == "l") return polyline(tokens, line);
+    static const char* const kSkipped[] = {"o", "g", "s", "vt", "vn", "mtllib", "usemtl"};
+    for (const char* skipped : kSkipped)
+      if (keyword == skipped) return;
+    if (keyword == "f")
+      fail(name_, line,
+           "faces ('f') are not allowed: a linkage is a line mesh of vertices ('v') and "
+           "rod segments ('l')");
+    fail(name_, line,
+         "unknown statement " + quoted(keyword) +
+             "; a linkage file has 'v' and 'l' lines (comments and o, g, s, vt, vn, mtllib, "
+             "usemtl lines are skipped)");
+  }
+
+  // Checks the indices against the final vertex count (a positive index may
+  // name a vertex defined further down).
+  ObjLineGraph finish() {
+    const int n = static_cast<int>(out_.graph.vertices.size());
+    for (std::size_t e = 0; e < out_.graph.edges.size(); ++e)
+      for (int v : out_.graph.edges[e])
+        if (v >= n)
+          fail(name_, out_.edge_lines[e],
+               "vertex index " + std::to_string(v + 1) + " is out of range: the file defines " +
+                   std::to_string(n) + " vertices");
+    return std::move(out_);
+  }
+
+ private:
+  void vertex(const std::vector<std::string_view>& tokens, int line) {
+    const std::size_t count = tokens.size() - 1;
+    if (count < 3)
+      fail(name_, line,
+           "vertex has " + std::to_string(count) + " coordinate(s); 'v x y z' needs three");
+    if (count > 4)
+      fail(name_, line,
+           "vertex has " + std::to_string(count) +
+               " coordinates; 'v x y z' takes three (and an optional w)");
+    double c[4] = {0, 0, 0, 1};
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::string what = "coordinate " + quoted(tokens[i + 1]);
+      const auto result = parse_number(tokens[i + 1], c[i]);
+      if (result.ec == std::errc::result_out_of_range)
+        fail(name_, line, what + " is out of the range of double-precision numbers");
+      if (result.ec != std::errc()) fail(name_, line, what + " is not a number");
+      if (!std::isfinite(c[i])) fail(name_, line, what + " is not a finite number");
+    }
+    out_.graph.vertices.emplace_back(c[0], c[1], c[2]);
+    out_.vertex_lines.push_back(line);
+  }
+
+  void polyline(const std::vector<std::string_view>& tokens, int line) {
+    if (tokens.size() < 3) fail(name_, line, "'l' needs at least two vertex indices ('l i j')");
+    int previous = -1;
+    for (std::size_t i = 1; i < tokens.size(); ++i) {
+      const int v = index(tokens[i], line);
+      if (previous >= 0) {
+        out_.graph.edges.push_back({previous, v});
+        out_.edge_lines.push_back(line);
+      }
+      previous = v;
+    }
+  }
+
+  // 0-based index of one "i", "i/t", "i//n" or "i/t/n" entry.
+  int index(std::string_view token, int line) const {
+    const std::string_view text = token.substr(0, token.find('/'));
+    long long value = 0;
+    const auto result = parse_number(text, value);
+    if (result.ec == std::errc::result_out_of_range)
+      fail(name_, line, "vertex index " + quoted(token) + " is out of range");
+    if (result.ec != std::errc())
+      fail(name_, line, "vertex index " + quoted(token) + " is not an integer");
+    const long long defined = static_cast<long long>(out_.graph.vertices.size());
+    if (value == 0) fail(name_, line, "vertex index 0 is invalid: OBJ indices start at 1");
+    if (value < 0) {
+      if (value < -defined)
+        fail(name_, line,
+             "relative vertex index " + std::to_string(value) +
+                 " reaches before the first vertex (" + std::to_string(defined) +
+                 " defined so far)");
+      return static_cast<int>(defined + value);
+    }
+    if (value > std::numeric_limits<int>::max())
+      fail(name_, line, "vertex index " + quoted(token) + " is out of range");
+    return static_cast<int>(value - 1);
+  }
+
+  const std::string& name_;
+  ObjLineGraph out_;
+};
+
+// ---------------------------------------------------------------------------
+// Graph checks, in the order a user would fix them.
+
+void check_self_loops(const ObjLineGraph& g, const std::string& name) {
+  for (std::size_t e = 0; e < g.graph.edges.size(); ++e) {
+    const auto [a, b] = g.graph.edges[e];
+    if (a == b)
+      fail(name, g.edge_lines[e],
+           "self-loop: the edge joins " + vertex_name(a, g.vertex_lines[a]) + " to itself");
+  }
+}
+
+void check_duplicate_edges(const ObjLineGraph& g, const std::string& name) {
+  std::map<std::pair<int, int>, std::size_t> first;
+  for (std::size_t e = 0; e < g.graph.edges.size(); ++e) {
+    const auto [a, b] = g.graph.edges[e];
+    const auto [it, inserted] = first.emplace(std::minmax(a, b), e);
+    if (inserted) continue;
+    const int other = g.edge_lines[it->second];
+    fail(name, g.edge_lines[e],
+         "duplicate edge between vertices " + std::to_string(a) + " and " + std::to_string(b) +
+             " (0-based): " +
+             (other == g.edge_lines[e] ? std::string("already defined earlier on this line")
+                                       : "already defined at line " + std::to_string(other)));
+  }
+}
+
+double bounding_box_diagonal(const std::vector<Eigen::Vector3d>& x) {
+  Eigen::Vector3d lo = x.front(), hi = x.front();
+  for (const auto& p : x) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).norm();
+}
+
+void check_edge_lengths(const ObjLineGraph& g, double tolerance, const std::string& name) {
+  const auto& x = g.graph.vertices;
+  for (std::size_t e = 0; e < g.graph.edges.size(); ++e) {
+    const auto [a, b] = g.graph.edges[e];
+    if ((x[a] - x[b]).norm() > tolerance) continue;
+    fail(name, g.edge_lines[e],
+         "zero-length edge: vertices " + std::to_string(a) + " and " + std::to_string(b) +
+             " (0-based; lines " + std::to_string(g.vertex_lines[a]) + " and " +
+             std::to_string(g.vertex_lines[b]) + ") are both at " + position(x[a]));
+  }
+}
+
+// Sort-and-sweep along a direction d: only vertices whose projections on d
+// differ by at most the tolerance are compared, so large files stay fast. d
+// is oblique so that the rows and columns of a grid do not share projections.
+// Reports the pair whose later vertex comes first in the file.
+void check_coincident_vertices(const ObjLineGraph& g, double tolerance, const std::string& name) {
+  const auto& x = g.graph.vertices;
+  const Eigen::Vector3d d = Eigen::Vector3d(1, 0.6180339887, 0.3819660113).normalized();
+  std::vector<double> key(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) key[i] = d.dot(x[i]);
+  std::vector<int> order(x.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return key[a] < key[b]; });
+  std::pair<int, int> worst{-1, -1};  // (later, earlier)
+  for (std::size_t i = 0; i < order.size(); ++i)
+    for (std::size_t j = i + 1; j < order.size() && key[order[j]] - key[order[i]] <= tolerance;
+         ++j) {
+      if ((x[order[i]] - x[order[j]]).norm() > tolerance) continue;
+      const auto pair = std::make_pair(std::max(order[i], order[j]), std::min(order[i], order[j]));
+      if (worst.first < 0 || pair < worst) worst = pair;
+    }
+  if (worst.first < 0) return;
+  const auto [later, earlier] = worst;
+  fail(name, g.vertex_lines[later],
+       vertex_name(later) + " coincides with " + vertex_name(earlier, g.vertex_lines[earlier]) +
+           " at " + position(x[later]) + "; merge them or move one");
+}
+
+void check_valences(const ObjLineGraph& g, const std::string& name) {
+  const std::vector<int> valence = valences(g.graph);
+  for (std::size_t v = 0; v < valence.size(); ++v) {
+    const int line = g.vertex_lines[v];
+    if (valence[v] == 0)
+      fail(name, line, vertex_name(static_cast<int>(v)) + " is isolated: no 'l' line uses it");
+    if (valence[v] > 4)
+      fail(name, line,
+           vertex_name(static_cast<int>(v)) + " has valence " + std::to_string(valence[v]) +
+               "; a scissor joint joins at most 4 rod segments");
+  }
+}
+
+// Labels connected components by union-find and reports the first vertex
+// outside the component of vertex 0.
+void check_connected(const ObjLineGraph& g, const std::string& name) {
+  std::vector<int> parent(g.graph.vertices.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const auto& [a, b] : g.graph.edges) parent[root(a)] = root(b);
+  int components = 0, stray = -1;
+  for (int v = 0; v < static_cast<int>(parent.size()); ++v) {
+    if (root(v) == v) ++components;
+    if (stray < 0 && root(v) != root(0)) stray = v;
+  }
+  if (stray < 0) return;
+  fail(name, g.vertex_lines[stray],
+       "the linkage is not connected (" + std::to_string(components) + " components): " +
+           vertex_name(stray) + " cannot be reached from " + vertex_name(0, g.vertex_lines[0]));
+}
+
+void check_graph(const ObjLineGraph& g, const std::string& name) {
+  if (g.graph.edges.empty())
+    throw InputError(name + ": no rod segments: a linkage needs at least one 'l' line");
+  check_self_loops(g, name);
+  check_duplicate_edges(g, name);
+  const double tolerance = 1e-12 * bounding_box_diagonal(g.graph.vertices);
+  check_edge_lengths(g, tolerance, name);
+  check_coincident_vertices(g, tolerance, name);
+  check_valences(g, name);
+  check_connected(g, name);
+}
+
+}  // namespace
+
+ObjLineGraph parse_obj_with_lines(std::istream& in, const std::string& name) {
+  ObjParser parser(name);
+  std::string text;
+  int line = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    if (!text.empty() && text.back() == '\r') text.pop_back();              // CRLF files
+    if (line == 1 && text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);  // UTF-8 mark
+    parser.parse_line(text, line);
+  }
+  if (in.bad()) throw InputError(name + ": read error after line " + std::to_string(line));
+  ObjLineGraph g = parser.finish();
+  check_graph(g, name);
+  return g;
+}
+
+LineGraph parse_obj(std::istream& in, const std::string& name) {
+  return parse_obj_with_lines(in, name).graph;
+}
+
+ObjLineGraph read_obj_with_lines(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot open linkage file '" + path + "': " + std::strerror(errno));
+  return parse_obj_with_lines(in, path);
+}
+
+LineGraph read_obj(const std::string& path) { return read_obj_with_lines(path).graph; }
+
+}  // namespace xshell
