@@ -25,8 +25,8 @@ const Names<RestShape> kRestShapes = {{RestShape::Input, "input"},
                                       {RestShape::Straight, "straight"}};
 const Names<JointModel> kJointModels = {{JointModel::Rotation, "rotation"},
                                         {JointModel::EdgeVectors, "edge_vectors"}};
-const Names<CrossSectionShape> kShapes = {{CrossSectionShape::Rectangle, "rectangle"},
-                                          {CrossSectionShape::Ellipse, "ellipse"}};
+const Names<SectionShape> kShapes = {{SectionShape::Rectangle, "rectangle"},
+                                          {SectionShape::Ellipse, "ellipse"}};
 const Names<SolverMethod> kMethods = {{SolverMethod::Newton, "newton"},
                                       {SolverMethod::Dynamics, "dynamics"},
                                       {SolverMethod::KineticDamping, "kinetic-damping"}};
@@ -110,18 +110,18 @@ std::string file_path(const JsonField& f, const std::string& base_dir) {
 // ---------------------------------------------------------------------------
 // Sections
 
-CrossSection read_cross_section(const JsonField& f) {
+CrossSectionConfig read_cross_section(const JsonField& f) {
   f.check_keys({"shape", "width", "height"});
-  CrossSection c;
+  CrossSectionConfig c;
   if (auto shape = f.find("shape")) c.shape = shape->choice(kShapes);
   c.width = positive(f.require("width"));
   c.height = positive(f.require("height"));
   return c;
 }
 
-Material read_material(const JsonField& f) {
+MaterialConfig read_material(const JsonField& f) {
   f.check_keys({"young_modulus", "poisson_ratio", "density", "strength", "cross_section"});
-  Material m;
+  MaterialConfig m;
   m.young_modulus = positive(f.require("young_modulus"));
   if (auto nu = f.find("poisson_ratio")) m.poisson_ratio = inside(*nu, -1, 0.5, "(-1, 0.5)");
   if (auto rho = f.find("density")) m.density = non_negative(*rho);

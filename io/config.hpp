@@ -22,14 +22,13 @@
 #include <vector>
 
 #include "linkage/graph.hpp"
+#include "linkage/rod_linkage.hpp"
 
 namespace xshell {
 
-// "rest_shape": the rods' stress-free shape.
-enum class RestShape {
-  Input,     // "input": the rods as drawn in the linkage file are unstressed
-  Straight,  // "straight": every rod is straight (and untwisted) at rest
-};
+// "rest_shape": the rods' stress-free shape, RestShape of the model
+// (linkage/rod_linkage.hpp): "input" (the rods as drawn in the linkage file
+// are unstressed) or "straight" (every rod is straight and untwisted at rest).
 
 // "joints": how a joint's rotation enters the unknowns.
 enum class JointModel {
@@ -37,8 +36,8 @@ enum class JointModel {
   EdgeVectors,  // "edge_vectors": the edge vectors of the rods at the joint
 };
 
-// "material.cross_section.shape".
-enum class CrossSectionShape { Rectangle /* "rectangle" */, Ellipse /* "ellipse" */ };
+// "material.cross_section.shape": SectionShape of the model
+// (rod/material.hpp), "rectangle" or "ellipse".
 
 // "solver.method".
 enum class SolverMethod {
@@ -70,19 +69,19 @@ enum class Fixed {
 };
 
 // "material.cross_section" (the same for every rod).
-struct CrossSection {
-  CrossSectionShape shape = CrossSectionShape::Rectangle;  // "shape", default "rectangle"
+struct CrossSectionConfig {
+  SectionShape shape = SectionShape::Rectangle;  // "shape", default "rectangle"
   double width = 0;                                        // "width", > 0, required; length
   double height = 0;                                       // "height", > 0, required; length
 };
 
 // "material".
-struct Material {
+struct MaterialConfig {
   double young_modulus = 0;        // "young_modulus", > 0, required; stress
   double poisson_ratio = 0.3;      // "poisson_ratio", in (-1, 0.5), default 0.3
   double density = 0;              // "density", >= 0, default 0; mass / length^3
   std::optional<double> strength;  // "strength", > 0, optional; stress, for utilisation reports
-  CrossSection cross_section;      // "cross_section", required
+  CrossSectionConfig cross_section;  // "cross_section", required
 };
 
 // An element of "supports" (default: none).
@@ -151,7 +150,7 @@ struct Config {
   int subdivisions = 8;  // "subdivisions", >= 3, default 8: rod edges per graph edge
   RestShape rest_shape = RestShape::Input;   // "rest_shape", default "input"
   JointModel joints = JointModel::Rotation;  // "joints", default "rotation"
-  Material material;                         // "material", required
+  MaterialConfig material;                   // "material", required
   std::vector<Support> supports;             // "supports", default none
   Loads loads;                               // "loads"
   SolverOptions solver;                      // "solver"

@@ -177,6 +177,21 @@ void RodLinkage::set_dofs(const Eigen::VectorXd& r) {
   }
 }
 
+std::pair<int, bool> RodLinkage::free_end(int vertex) const {
+  for (int s = 0; s < num_segments(); ++s)
+    for (int side = 0; side < 2; ++side)
+      if (topology_.segments[s].vertex[side] == vertex && topology_.segments[s].joint[side] < 0)
+        return {s, side == 0};
+  throw std::invalid_argument("vertex " + std::to_string(vertex) + " is not a free end");
+}
+
+Eigen::Vector3d RodLinkage::vertex_position(int vertex) const {
+  const int j = topology_.joint_of_vertex[vertex];
+  if (j >= 0) return joints_[j].position();
+  const auto [s, at_start] = free_end(vertex);
+  return rods_[s].nodes()[at_start ? 0 : rods_[s].num_edges()];
+}
+
 void RodLinkage::update_source_frames() {
   for (ElasticRod& rod : rods_) rod.update_source_frames();
 }

@@ -93,8 +93,16 @@ class RodLinkage {
                         const std::vector<Eigen::VectorXd>* forces = nullptr) const;
   Eigen::SparseMatrix<double> hessian(const std::vector<Eigen::VectorXd>* forces = nullptr) const;
 
-  // Diagonal of the pulled-back lumped mass matrix, diag(J^T M J).
-  Eigen::VectorXd lumped_mass() const;
+  // Diagonal of the pulled-back lumped mass matrix, diag(J^T M J) (at
+  // density 1 with unit_density).
+  Eigen::VectorXd lumped_mass(bool unit_density = false) const;
+  // Velocity of segment s's full variables for a velocity of the reduced
+  // unknowns: J v.
+  Eigen::VectorXd full_velocity(int s, const Eigen::VectorXd& reduced_velocity) const;
+  // Where each vertex sits: a joint's position, a free end's end node.
+  Eigen::Vector3d vertex_position(int vertex) const;
+  // For a free-end vertex: its segment and whether the end is the segment's start.
+  std::pair<int, bool> free_end(int vertex) const;
 
  private:
   // A segment's local reduced unknowns: its free ones, then the 9 of the

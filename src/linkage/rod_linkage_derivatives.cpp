@@ -88,10 +88,17 @@ Eigen::SparseMatrix<double> RodLinkage::hessian(const std::vector<Eigen::VectorX
   return h;
 }
 
-Eigen::VectorXd RodLinkage::lumped_mass() const {
+Eigen::VectorXd RodLinkage::full_velocity(int s, const Eigen::VectorXd& reduced_velocity) const {
+  const LocalMap map = local_map(s, false);
+  Eigen::VectorXd local(map.global.size());
+  for (size_t k = 0; k < map.global.size(); ++k) local[k] = reduced_velocity[map.global[k]];
+  return map.jacobian * local;
+}
+
+Eigen::VectorXd RodLinkage::lumped_mass(bool unit_density) const {
   Eigen::VectorXd m = Eigen::VectorXd::Zero(num_dofs_);
   for (int s = 0; s < num_segments(); ++s) {
-    const Eigen::VectorXd mv = rods_[s].lumped_mass();
+    const Eigen::VectorXd mv = rods_[s].lumped_mass(unit_density);
     const LocalMap map = local_map(s, false);
     const Eigen::VectorXd local = (map.jacobian.array().square().colwise() * mv.array()).colwise().sum();
     for (size_t k = 0; k < map.global.size(); ++k) m[map.global[k]] += local[k];

@@ -76,6 +76,24 @@ T signed_angle(const V3<T>& u, const V3<T>& v, const V3<T>& n) {
   return atan2(dot(cross(u, v), n), dot(u, v));
 }
 
+// Left Jacobian of the exponential map: for R(w(t)), the spatial angular
+// velocity is J_l(w) w'. J_l = I + b [w]x + c [w]x^2 with b as above and
+// c = (|w| - sin|w|) / |w|^3 (series near 0).
+inline Eigen::Matrix3d left_jacobian(const Eigen::Vector3d& w) {
+  const double s = w.squaredNorm();
+  double a, b, c;
+  rodrigues_coefficients(s, a, b);
+  if (s < detail::kRotationSeriesThreshold) {
+    c = 1.0 / 6.0 - s * (1.0 / 120.0 - s / 5040.0);
+  } else {
+    const double theta = std::sqrt(s);
+    c = (theta - std::sin(theta)) / (s * theta);
+  }
+  Eigen::Matrix3d k;
+  k << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+  return Eigen::Matrix3d::Identity() + b * k + c * k * k;
+}
+
 // Any unit vector orthogonal to the unit vector t.
 inline Eigen::Vector3d any_perpendicular(const Eigen::Vector3d& t) {
   Eigen::Vector3d trial = std::abs(t.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();

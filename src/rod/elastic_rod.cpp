@@ -242,14 +242,17 @@ void ElasticRod::add_hessian(Eigen::MatrixXd& hessian) const {
   }
 }
 
-Eigen::VectorXd ElasticRod::lumped_mass() const {
+Eigen::VectorXd ElasticRod::lumped_mass(bool unit_density) const {
+  const double mass_per_length = unit_density ? stiffness_.area : stiffness_.mass_per_length;
+  const double inertia_per_length =
+      unit_density ? stiffness_.polar_moment : stiffness_.rotational_inertia_per_length;
   Eigen::VectorXd m = Eigen::VectorXd::Zero(num_dofs());
   for (int j = 0; j < num_edges(); ++j) {
     const double length = rest_length_[j] * stretching_share_[j];
-    const double half = 0.5 * stiffness_.mass_per_length * length;
+    const double half = 0.5 * mass_per_length * length;
     m.segment<3>(node_dof(j)).array() += half;
     m.segment<3>(node_dof(j + 1)).array() += half;
-    m[theta_dof(j)] = stiffness_.rotational_inertia_per_length * length;
+    m[theta_dof(j)] = inertia_per_length * length;
   }
   return m;
 }

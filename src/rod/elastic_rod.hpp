@@ -104,7 +104,8 @@ class ElasticRod {
   // Lumped masses of the full variables (num_dofs()): each edge's mass
   // (mass per length x rest length x share) split between its two nodes,
   // and each theta's rotational inertia (per length x rest length x share).
-  Eigen::VectorXd lumped_mass() const;
+  // With unit_density, the masses the rod would have at density 1.
+  Eigen::VectorXd lumped_mass(bool unit_density = false) const;
 
   // Strains at interior vertex i (1 <= i <= n - 1).
   VertexStrains<double> strains(int i) const;

@@ -31,6 +31,7 @@ RodStiffness stiffness(const Material& m) {
   k.area = area;
   k.mass_per_length = m.density * area;
   k.rotational_inertia_per_length = m.density * (i_d1 + i_d2);
+  k.polar_moment = i_d1 + i_d2;
   return k;
 }
 

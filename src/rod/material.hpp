@@ -38,6 +38,7 @@ struct RodStiffness {
   double area = 0.0;        // A
   double mass_per_length = 0.0;  // density * A
   double rotational_inertia_per_length = 0.0;  // density * (I_d1 + I_d2)
+  double polar_moment = 0.0;  // I_d1 + I_d2 (length^4)
 };
 
 // Section properties:

@@ -91,7 +91,7 @@ TEST_CASE("config: defaults are filled in") {
   CHECK(c.material.poisson_ratio == 0.3);
   CHECK(c.material.density == 0);
   CHECK_FALSE(c.material.strength.has_value());
-  CHECK(c.material.cross_section.shape == CrossSectionShape::Rectangle);
+  CHECK(c.material.cross_section.shape == SectionShape::Rectangle);
   CHECK(c.material.cross_section.width == 10);
   CHECK(c.material.cross_section.height == 7);
   CHECK(c.supports.empty());
@@ -120,7 +120,7 @@ TEST_CASE("config: every key is read") {
   CHECK(c.material.poisson_ratio == 0.25);
   CHECK(c.material.density == 7.85e-9);
   CHECK(c.material.strength == 300.0);
-  CHECK(c.material.cross_section.shape == CrossSectionShape::Ellipse);
+  CHECK(c.material.cross_section.shape == SectionShape::Ellipse);
   REQUIRE(c.supports.size() == 2);
   CHECK(c.supports[0].vertex == 0);
   CHECK(c.supports[0].fix == std::vector<Fixed>{Fixed::Position, Fixed::Orientation});

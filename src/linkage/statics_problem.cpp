@@ -1,0 +1,262 @@
+#include "statics_problem.hpp"
+
+#include <string>
+
+#include "model_error.hpp"
+
+namespace xshell {
+
+namespace {
+std::string vertex_name(int v) { return "vertex " + std::to_string(v); }
+
+// Angle from the old to the new reference direction of an edge, as the edge
+// moves with velocity de: the rate at which theta must change for the
+// material frame to move the same way with the new source frame.
+double theta_rate_correction(const Eigen::Vector3d& e, const Eigen::Vector3d& de, const SourceFrame& old_source,
+                             const SourceFrame& new_source) {
+  using D = Dual<1>;
+  const D tau = D::variable(0, 0.0);
+  const V3<D> edge = lift<D>(e) + lift<D>(de) * tau;
+  const V3<D> t = edge / norm(edge);
+  const Frame<D> a = reference_frame(t, new_source);
+  const Frame<D> b = reference_frame(t, old_source);
+  return signed_angle(a.d1, b.d1, t).g[0];
+}
+}  // namespace
+
+LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : linkage_(std::move(linkage)) {
+  const RodLinkage& l = linkage_;
+  const int nv = static_cast<int>(l.graph().vertices.size());
+  fixed_.assign(l.num_dofs(), false);
+
+  // Scales.
+  Eigen::Vector3d lo = l.graph().vertices[0], hi = lo;
+  for (const auto& v : l.graph().vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  length_scale_ = (hi - lo).norm();
+  const RodStiffness& k = l.segment(0).stiffness();
+  force_scale_ = std::max(k.bending1, k.bending2) / (length_scale_ * length_scale_);
+
+  // Supports.
+  auto check_vertex = [&](int v, const char* what) {
+    if (v < 0 || v >= nv)
+      throw ModelError(std::string(what) + " names " + vertex_name(v) + ", but the linkage has " +
+                       std::to_string(nv) + " vertices");
+  };
+  std::vector<VertexSupport> supports = setup.supports;
+  if (supports.empty()) {
+    if (l.num_joints() == 0)
+      throw ModelError("the linkage has no joint to pin by default: give supports that hold it in place");
+    const Eigen::Vector3d centre = 0.5 * (lo + hi);
+    int best = -1;
+    for (int j = 0; j < l.num_joints(); ++j) {
+      const int v = l.topology().joints[j].vertex;
+      if (best < 0 || (l.graph().vertices[v] - centre).norm() < (l.graph().vertices[best] - centre).norm() - 1e-12 * length_scale_)
+        best = v;
+    }
+    default_support_ = best;
+    supports.push_back({best, {SupportDof::Position, SupportDof::Orientation}});
+  }
+  for (const VertexSupport& support : supports) {
+    check_vertex(support.vertex, "a support");
+    const int j = l.topology().joint_of_vertex[support.vertex];
+    for (SupportDof dof : support.fix) {
+      if (j >= 0) {
+        const int o = l.joint_dof_offset(j);
+        switch (dof) {
+          case SupportDof::Position: for (int c = 0; c < 3; ++c) fix(o + kPosition + c); break;
+          case SupportDof::X: fix(o + kPosition); break;
+          case SupportDof::Y: fix(o + kPosition + 1); break;
+          case SupportDof::Z: fix(o + kPosition + 2); break;
+          case SupportDof::Orientation: for (int c = 0; c < 3; ++c) fix(o + kOmega + c); break;
+          case SupportDof::OpeningAngle: fix(o + kAlpha); break;
+        }
+        continue;
+      }
+      const auto [s, at_start] = l.free_end(support.vertex);
+      const ElasticRod& rod = l.segment(s);
+      const int end = at_start ? 0 : rod.num_edges();
+      const int next = at_start ? 1 : rod.num_edges() - 1;
+      const int edge = at_start ? 0 : rod.num_edges() - 1;
+      auto fix_full = [&](int full) {
+        const int r = l.reduced_index(s, full);
+        if (r < 0)
+          throw ModelError("support at " + vertex_name(support.vertex) +
+                           ": the end edge is too short to clamp (raise subdivisions)");
+        fix(r);
+      };
+      switch (dof) {
+        case SupportDof::Position: for (int c = 0; c < 3; ++c) fix_full(3 * end + c); break;
+        case SupportDof::X: fix_full(3 * end); break;
+        case SupportDof::Y: fix_full(3 * end + 1); break;
+        case SupportDof::Z: fix_full(3 * end + 2); break;
+        case SupportDof::Orientation:
+          for (int c = 0; c < 3; ++c) {
+            fix_full(3 * end + c);
+            fix_full(3 * next + c);
+          }
+          fix_full(rod.theta_dof(edge));
+          break;
+        case SupportDof::OpeningAngle:
+          throw ModelError("support at " + vertex_name(support.vertex) +
+                           ": a free rod end has no opening angle to fix");
+      }
+    }
+  }
+  free_position_.assign(l.num_dofs(), -1);
+  for (int i = 0; i < l.num_dofs(); ++i)
+    if (!fixed_[i]) {
+      free_position_[i] = static_cast<int>(free_.size());
+      free_.push_back(i);
+    }
+
+  // Loads.
+  point_forces_ = Eigen::VectorXd::Zero(l.num_dofs());
+  for (int s = 0; s < l.num_segments(); ++s) {
+    const ElasticRod& rod = l.segment(s);
+    const Eigen::VectorXd mass = rod.lumped_mass();
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(rod.num_dofs());
+    for (int n = 0; n < rod.num_nodes(); ++n) f.segment<3>(3 * n) = mass[3 * n] * setup.gravity;
+    segment_forces_.push_back(f);
+    segment_input_.push_back(rod.dofs());
+  }
+  for (const PointLoad& load : setup.forces) {
+    check_vertex(load.vertex, "a force");
+    const int j = l.topology().joint_of_vertex[load.vertex];
+    if (j >= 0) {
+      point_forces_.segment<3>(l.joint_dof_offset(j) + kPosition) += load.force;
+    } else {
+      const auto [s, at_start] = l.free_end(load.vertex);
+      const int end = at_start ? 0 : l.segment(s).num_edges();
+      segment_forces_[s].segment<3>(3 * end) += load.force;
+    }
+  }
+  input_dofs_ = l.dofs();
+}
+
+Eigen::VectorXd LinkageProblem::free_dofs() const {
+  const Eigen::VectorXd r = linkage_.dofs();
+  Eigen::VectorXd q(free_.size());
+  for (size_t i = 0; i < free_.size(); ++i) q[i] = r[free_[i]];
+  return q;
+}
+
+void LinkageProblem::set_free_dofs(const Eigen::VectorXd& q) {
+  Eigen::VectorXd r = linkage_.dofs();
+  for (size_t i = 0; i < free_.size(); ++i) r[free_[i]] = q[i];
+  linkage_.set_dofs(r);
+}
+
+EnergyReport LinkageProblem::energy() const {
+  const RodEnergy e = linkage_.energy();
+  EnergyReport report{e.stretching, e.bending, e.twisting, 0.0};
+  for (int s = 0; s < linkage_.num_segments(); ++s)
+    report.external -= segment_forces_[s].dot(linkage_.segment(s).dofs() - segment_input_[s]);
+  report.external -= point_forces_.dot(linkage_.dofs() - input_dofs_);
+  return report;
+}
+
+Eigen::VectorXd LinkageProblem::free_gradient() const {
+  const Eigen::VectorXd g = linkage_.gradient(&segment_forces_) - point_forces_;
+  Eigen::VectorXd out(free_.size());
+  for (size_t i = 0; i < free_.size(); ++i) out[i] = g[free_[i]];
+  return out;
+}
+
+const Eigen::SparseMatrix<double>& LinkageProblem::free_hessian() {
+  std::vector<Eigen::Triplet<double>> all, kept;
+  linkage_.hessian_triplets(all, &segment_forces_);
+  kept.reserve(all.size());
+  for (const auto& t : all) {
+    const int r = free_position_[t.row()], c = free_position_[t.col()];
+    if (r >= 0 && c >= 0) kept.emplace_back(r, c, t.value());
+  }
+  hessian_.resize(num_free(), num_free());
+  hessian_.setFromTriplets(kept.begin(), kept.end());
+  return hessian_;
+}
+
+Eigen::VectorXd LinkageProblem::gradient_weights() const {
+  Eigen::VectorXd w_all = Eigen::VectorXd::Constant(linkage_.num_dofs(), 1.0 / force_scale_);
+  const double moment = 1.0 / (length_scale_ * force_scale_);
+  for (int s = 0; s < linkage_.num_segments(); ++s) {
+    const ElasticRod& rod = linkage_.segment(s);
+    for (int j = 0; j < rod.num_edges(); ++j) {
+      const int r = linkage_.reduced_index(s, rod.theta_dof(j));
+      if (r >= 0) w_all[r] = moment;
+    }
+  }
+  for (int j = 0; j < linkage_.num_joints(); ++j) {
+    const int o = linkage_.joint_dof_offset(j);
+    for (int c = 0; c < 4; ++c) w_all[o + kOmega + c] = moment;  // omega (3) and alpha
+  }
+  Eigen::VectorXd w(free_.size());
+  for (size_t i = 0; i < free_.size(); ++i) w[i] = w_all[free_[i]];
+  return w;
+}
+
+double LinkageProblem::gradient_measure() const {
+  if (free_.empty()) return 0.0;
+  return (gradient_weights().array() * free_gradient().array()).abs().maxCoeff();
+}
+
+Eigen::VectorXd LinkageProblem::free_mass() const {
+  const bool unit = linkage_.options().material.density <= 0.0;
+  const Eigen::VectorXd m = linkage_.lumped_mass(unit);
+  Eigen::VectorXd out(free_.size());
+  for (size_t i = 0; i < free_.size(); ++i) out[i] = m[free_[i]];
+  return out;
+}
+
+void LinkageProblem::rebase(Eigen::VectorXd* free_velocity) {
+  if (!free_velocity) {
+    linkage_.update_source_frames();
+    linkage_.fold_joints();
+    return;
+  }
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(linkage_.num_dofs());
+  for (size_t i = 0; i < free_.size(); ++i) v[free_[i]] = (*free_velocity)[i];
+  // Edge velocities and old source frames, before the update.
+  std::vector<Eigen::VectorXd> full_velocity;
+  std::vector<std::vector<SourceFrame>> old_sources;
+  for (int s = 0; s < linkage_.num_segments(); ++s) {
+    full_velocity.push_back(linkage_.full_velocity(s, v));
+    old_sources.push_back(linkage_.segment(s).source_frames());
+  }
+  std::vector<Eigen::Matrix3d> jacobians;
+  for (int j = 0; j < linkage_.num_joints(); ++j)
+    jacobians.push_back(left_jacobian(linkage_.joint(j).params().segment<3>(kOmega)));
+  linkage_.update_source_frames();
+  linkage_.fold_joints();
+  for (int s = 0; s < linkage_.num_segments(); ++s) {
+    const ElasticRod& rod = linkage_.segment(s);
+    for (int j = 0; j < rod.num_edges(); ++j) {
+      const int r = linkage_.reduced_index(s, rod.theta_dof(j));
+      if (r < 0) continue;
+      const Eigen::Vector3d de = full_velocity[s].segment<3>(3 * (j + 1)) - full_velocity[s].segment<3>(3 * j);
+      v[r] += theta_rate_correction(rod.edge(j), de, old_sources[s][j], rod.source_frames()[j]);
+    }
+  }
+  for (int j = 0; j < linkage_.num_joints(); ++j) {
+    const int o = linkage_.joint_dof_offset(j) + kOmega;
+    v.segment<3>(o) = jacobians[j] * v.segment<3>(o);
+  }
+  for (size_t i = 0; i < free_.size(); ++i) (*free_velocity)[i] = v[free_[i]];
+}
+
+std::vector<Eigen::Vector3d> LinkageProblem::vertex_positions() const {
+  std::vector<Eigen::Vector3d> out;
+  for (size_t v = 0; v < linkage_.graph().vertices.size(); ++v) out.push_back(linkage_.vertex_position(static_cast<int>(v)));
+  return out;
+}
+
+std::vector<std::optional<double>> LinkageProblem::opening_angles() const {
+  std::vector<std::optional<double>> out(linkage_.graph().vertices.size());
+  for (int j = 0; j < linkage_.num_joints(); ++j)
+    out[linkage_.topology().joints[j].vertex] = linkage_.joint(j).opening_angle();
+  return out;
+}
+
+}  // namespace xshell

@@ -1,0 +1,116 @@
+// A statics problem on a rod linkage: which unknowns supports hold fixed,
+// which dead loads act, and the free unknowns the solvers move.
+//
+// Supports act on graph vertices. At a joint: "position" fixes p (or one
+// component for a roller), "orientation" fixes omega (the joint's bisector
+// frame and normal; the opening angle stays free), "opening_angle" fixes
+// alpha. At a free rod end: "position" fixes the end node (or components),
+// "orientation" clamps the end: it also fixes the next node and the end
+// edge's theta (direction, length and twist of the end edge). Without any
+// support, the joint nearest the bounding-box centre (ties: lowest index) has
+// its position and orientation fixed, which removes exactly the rigid
+// motions.
+//
+// Loads: gravity g acts on lumped node masses (density x area x the node's
+// share of rest length, terminal edges at joints counted half by each of
+// their two segments), point forces on a vertex (a joint's p or a free end's
+// node). Potential of the loads: -sum f . (x - x_input); the total energy
+// includes it.
+//
+// Convergence measure: with L the diagonal of the input's bounding box,
+// EI_max the larger bending stiffness and F_c = EI_max / L^2, the gradient's
+// force components (positions, lengths) divided by F_c and its moment
+// components (thetas, omega, alpha) by L F_c; the solve has converged when
+// the largest is at most the dimensionless gradient tolerance. That measure
+// is the same in any unit system.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <optional>
+#include <vector>
+
+#include "rod_linkage.hpp"
+
+namespace xshell {
+
+enum class SupportDof { Position, X, Y, Z, Orientation, OpeningAngle };
+
+struct VertexSupport {
+  int vertex = 0;
+  std::vector<SupportDof> fix;
+};
+
+struct PointLoad {
+  int vertex = 0;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+};
+
+struct StaticsSetup {
+  std::vector<VertexSupport> supports;  // none: the default pin described above
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
+  std::vector<PointLoad> forces;
+};
+
+struct EnergyReport {
+  double stretching = 0, bending = 0, twisting = 0, external = 0;
+  double total() const { return stretching + bending + twisting + external; }
+};
+
+class LinkageProblem {
+ public:
+  // Throws ModelError for a support or load that does not apply.
+  LinkageProblem(RodLinkage linkage, const StaticsSetup& setup);
+
+  const RodLinkage& linkage() const { return linkage_; }
+  // The vertex pinned by default, when no support was given (else -1).
+  int default_support_vertex() const { return default_support_; }
+
+  int num_free() const { return static_cast<int>(free_.size()); }
+  const std::vector<int>& free_indices() const { return free_; }
+  Eigen::VectorXd free_dofs() const;
+  void set_free_dofs(const Eigen::VectorXd& q);
+  // All reduced unknowns (fixed ones included), e.g. for restarts.
+  Eigen::VectorXd dofs() const { return linkage_.dofs(); }
+  void set_dofs(const Eigen::VectorXd& r) { linkage_.set_dofs(r); }
+
+  EnergyReport energy() const;
+  Eigen::VectorXd free_gradient() const;
+  // Free Hessian, both triangles; its pattern never changes.
+  const Eigen::SparseMatrix<double>& free_hessian();
+  Eigen::VectorXd gradient_weights() const;
+  // max |w_i g_i| over the free unknowns.
+  double gradient_measure() const;
+  // Lumped masses of the free unknowns (at density 1 when the material has
+  // none, so that they stay positive).
+  Eigen::VectorXd free_mass() const;
+
+  // Updates the rods' source frames and folds the joints; when given, the
+  // free velocity is carried over so that it describes the same motion.
+  void rebase(Eigen::VectorXd* free_velocity = nullptr);
+
+  double length_scale() const { return length_scale_; }
+  double force_scale() const { return force_scale_; }
+
+  // Per graph vertex: position (joint p or free end node), and opening
+  // angle (nullopt for free ends).
+  std::vector<Eigen::Vector3d> vertex_positions() const;
+  std::vector<std::optional<double>> opening_angles() const;
+
+ private:
+  void fix(int index) { fixed_[index] = true; }
+
+  RodLinkage linkage_;
+  std::vector<bool> fixed_;
+  std::vector<int> free_;
+  int default_support_ = -1;
+  std::vector<Eigen::VectorXd> segment_forces_;  // dead loads on full variables
+  std::vector<Eigen::VectorXd> segment_input_;   // full variables at the input
+  Eigen::VectorXd point_forces_;                 // on reduced unknowns
+  Eigen::VectorXd input_dofs_;
+  double length_scale_ = 1.0, force_scale_ = 1.0;
+  Eigen::SparseMatrix<double> hessian_;
+  std::vector<int> free_position_;  // reduced index -> free index or -1
+};
+
+}  // namespace xshell
