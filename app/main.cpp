@@ -1,11 +1,49 @@
 // xshell: static equilibria of elastic rod scissor linkages.
 #include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
 #include <iostream>
 
+#include "exit_status.hpp"
+#include "relax_command.hpp"
+#include "render_command.hpp"
+
+namespace {
+std::atomic<bool> g_stop{false};
+extern "C" void on_signal(int) { g_stop = true; }
+}  // namespace
+
 int main(int argc, char** argv) {
+  using namespace xshell;
   CLI::App app{"xshell: static equilibria of elastic rod scissor linkages"};
   app.set_version_flag("--version", XSHELL_VERSION);
   app.require_subcommand(1);
-  CLI11_PARSE(app, argc, argv);
-  return 0;
+
+  RelaxArguments relax;
+  CLI::App* relax_cmd = app.add_subcommand("relax", "Find the static equilibrium of a linkage");
+  relax_cmd->add_option("config", relax.config, "Configuration (JSON)")->required();
+  relax_cmd->add_option("--solver", relax.solver, "newton | dynamics (overrides solver.method)");
+  relax_cmd->add_option("--out", relax.out, "Output directory (overrides output.directory)");
+  relax_cmd->add_option("--init", relax.init, "Start from a state.json written by an earlier run");
+  relax_cmd->add_flag("--quiet", relax.quiet, "No progress lines");
+  relax_cmd->add_flag("--verbose", relax.verbose, "Progress lines even when stderr is not a terminal");
+
+  RenderArguments render;
+  CLI::App* render_cmd = app.add_subcommand("render", "Render a run's final state (or .vtp files) to a PNG");
+  render_cmd->add_option("inputs", render.inputs, "An output directory of `relax`, or .vtp files")->required();
+  render_cmd->add_option("--out", render.png, "PNG file to write")->required();
+  render_cmd->add_option("--width", render.width, "Picture width in pixels");
+  render_cmd->add_option("--height", render.height, "Picture height in pixels");
+  render_cmd->add_option("--color", render.color, "Point or cell array to colour by");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitInvalidInput;
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  if (*relax_cmd) return run_relax(relax, g_stop);
+  return run_render(render);
 }

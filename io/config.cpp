@@ -30,8 +30,10 @@ const Names<SectionShape> kShapes = {{SectionShape::Rectangle, "rectangle"},
 const Names<SolverMethod> kMethods = {{SolverMethod::Newton, "newton"},
                                       {SolverMethod::Dynamics, "dynamics"},
                                       {SolverMethod::KineticDamping, "kinetic-damping"}};
-const Names<MassModel> kMasses = {{MassModel::Physical, "physical"},
-                                  {MassModel::Fictitious, "fictitious"}};
+const Names<LineSearchSetting> kLineSearches = {{LineSearchSetting::Energy, "energy"},
+                                                {LineSearchSetting::Kinsol, "kinsol"}};
+const Names<MassSetting> kMasses = {{MassSetting::Physical, "physical"},
+                                  {MassSetting::Fictitious, "fictitious"}};
 const Names<OutputFormat> kFormats = {{OutputFormat::Binary, "binary"},
                                       {OutputFormat::Ascii, "ascii"}};
 const Names<Fixed> kFixed = {{Fixed::Position, "position"},
@@ -166,12 +168,13 @@ Loads read_loads(const JsonField& f) {
 }
 
 SolverOptions read_solver(const JsonField& f) {
-  f.check_keys({"method", "gradient_tolerance", "max_iterations", "mass", "damping", "first_order",
-                "max_steps"});
+  f.check_keys({"method", "gradient_tolerance", "max_iterations", "line_search", "mass", "damping",
+                "first_order", "max_steps"});
   SolverOptions s;
   if (auto method = f.find("method")) s.method = method->choice(kMethods);
   if (auto tol = f.find("gradient_tolerance")) s.gradient_tolerance = positive(*tol);
   if (auto n = f.find("max_iterations")) s.max_iterations = at_least(*n, 1);
+  if (auto ls = f.find("line_search")) s.line_search = ls->choice(kLineSearches);
   if (auto mass = f.find("mass")) s.mass = mass->choice(kMasses);
   if (auto damping = f.find("damping")) {
     if (damping->is_string() && damping->string() == "auto")
@@ -320,6 +323,7 @@ nlohmann::json to_json(const Config& c) {
        {{"method", name_of(s.method, kMethods)},
         {"gradient_tolerance", s.gradient_tolerance},
         {"max_iterations", s.max_iterations},
+        {"line_search", name_of(s.line_search, kLineSearches)},
         {"mass", name_of(s.mass, kMasses)},
         {"damping", s.damping ? nlohmann::json(*s.damping) : nlohmann::json("auto")},
         {"first_order", s.first_order},

@@ -46,8 +46,15 @@ enum class SolverMethod {
   KineticDamping,  // "kinetic-damping": dynamic relaxation, velocities zeroed at energy peaks
 };
 
+// "solver.line_search" (newton): what the backtracking along a Newton step
+// watches.
+enum class LineSearchSetting {
+  Energy,  // "energy": Armijo backtracking on the total energy (default)
+  Kinsol,  // "kinsol": KINSOL's own line search on 1/2 |scaled gradient|^2
+};
+
 // "solver.mass" (dynamics and kinetic-damping).
-enum class MassModel {
+enum class MassSetting {
   Physical,    // "physical": the rods' mass from density and cross-section
   Fictitious,  // "fictitious": a mass chosen for the fastest stable relaxation
 };
@@ -108,7 +115,8 @@ struct SolverOptions {
   SolverMethod method = SolverMethod::Newton;  // "method", default "newton"
   double gradient_tolerance = 1e-6;      // "gradient_tolerance", > 0, default 1e-6; dimensionless
   int max_iterations = 100;              // "max_iterations", >= 1, default 100 (newton)
-  MassModel mass = MassModel::Physical;  // "mass", default "physical"
+  LineSearchSetting line_search = LineSearchSetting::Energy;  // "line_search", default "energy"
+  MassSetting mass = MassSetting::Physical;  // "mass", default "physical"
   std::optional<double> damping;         // "damping", >= 0 or "auto" (nullopt, the default);
                                          // 1 / time
   bool first_order = false;              // "first_order", default false: integrate the

@@ -1,8 +1,13 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs the whole test suite (including
-# the tests labelled "validation"). Fails when any test fails.
+# the tests labelled "validation"). Fails when any test fails. The suite runs
+# under a virtual X server (xvfb-run) so that the rendering test renders.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
 cd build
-ctest --output-on-failure -j"$(nproc)" "$@"
+if command -v xvfb-run >/dev/null 2>&1; then
+  xvfb-run -a ctest --output-on-failure -j"$(nproc)" "$@"
+else
+  ctest --output-on-failure -j"$(nproc)" "$@"
+fi

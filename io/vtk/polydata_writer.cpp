@@ -5,8 +5,8 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataWriter.h>
 
-#include "atomic_file.hpp"
-#include "output_error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/output_error.hpp"
 
 namespace xshell {
 

@@ -26,7 +26,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "render_error.hpp"
 #include "x_display.hpp"
 

@@ -5,10 +5,10 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "frames_file.hpp"
 #include "joints_file.hpp"
-#include "output_error.hpp"
+#include "io/output_error.hpp"
 #include "rods_file.hpp"
 
 namespace xshell {

@@ -177,6 +177,32 @@ void RodLinkage::set_dofs(const Eigen::VectorXd& r) {
   }
 }
 
+LinkageState RodLinkage::state() const {
+  LinkageState out;
+  for (const ElasticRod& rod : rods_)
+    out.segments.push_back({rod.nodes(), rod.thetas(), rod.source_frames(), rod.twist_hints()});
+  for (const Joint& joint : joints_) out.joints.push_back({joint.params(), joint.reference_frame()});
+  return out;
+}
+
+void RodLinkage::restore(const LinkageState& state) {
+  if (state.segments.size() != rods_.size() || state.joints.size() != joints_.size())
+    throw std::invalid_argument("the state has " + std::to_string(state.segments.size()) + " segments and " +
+                                std::to_string(state.joints.size()) + " joints, the linkage " +
+                                std::to_string(rods_.size()) + " and " + std::to_string(joints_.size()));
+  for (size_t s = 0; s < rods_.size(); ++s) {
+    const SegmentState& seg = state.segments[s];
+    rods_[s].restore(seg.nodes, seg.thetas, seg.source_frames, seg.twist_hints);
+  }
+  for (size_t j = 0; j < joints_.size(); ++j) {
+    joints_[j].set_reference_frame(state.joints[j].reference_frame);
+    joints_[j].set_params(state.joints[j].params);
+  }
+  // Recompute the joint-controlled variables from the joints, with the
+  // restored thetas as branch hints.
+  set_dofs(dofs());
+}
+
 std::pair<int, bool> RodLinkage::free_end(int vertex) const {
   for (int s = 0; s < num_segments(); ++s)
     for (int side = 0; side < 2; ++side)

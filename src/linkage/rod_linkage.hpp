@@ -55,6 +55,23 @@ struct LinkageOptions {
 
 constexpr int kMinSubdivisions = 3;
 
+// Everything that, with the linkage's graph and options, reproduces a state
+// exactly (restarts).
+struct SegmentState {
+  std::vector<Eigen::Vector3d> nodes;
+  std::vector<double> thetas;
+  std::vector<SourceFrame> source_frames;
+  std::vector<double> twist_hints;
+};
+struct JointState {
+  JointParams params = JointParams::Zero();
+  Eigen::Matrix3d reference_frame = Eigen::Matrix3d::Identity();
+};
+struct LinkageState {
+  std::vector<SegmentState> segments;
+  std::vector<JointState> joints;
+};
+
 class RodLinkage {
  public:
   // Throws ModelError when the graph cannot be built into a linkage.
@@ -78,6 +95,10 @@ class RodLinkage {
   // Throws std::domain_error for a degenerate configuration (a terminal edge
   // of zero length).
   void set_dofs(const Eigen::VectorXd& dofs);
+
+  LinkageState state() const;
+  // Throws std::invalid_argument when the state does not fit this linkage.
+  void restore(const LinkageState& state);
 
   // Re-expressions of the unknowns that move nothing (see the solvers).
   void update_source_frames();

@@ -96,6 +96,18 @@ Frame<double> ElasticRod::material_frame(int j) const {
   return xshell::material_frame(reference_[j], thetas_[j]);
 }
 
+void ElasticRod::restore(const std::vector<Eigen::Vector3d>& nodes, const std::vector<double>& thetas,
+                         const std::vector<SourceFrame>& source_frames, const std::vector<double>& twist_hints) {
+  if (nodes.size() != nodes_.size() || thetas.size() != thetas_.size() ||
+      source_frames.size() != source_.size() || twist_hints.size() != twist_hint_.size())
+    throw std::invalid_argument("ElasticRod::restore: size mismatch");
+  nodes_ = nodes;
+  thetas_ = thetas;
+  source_ = source_frames;
+  twist_hint_ = twist_hints;
+  update_reference_frames();
+}
+
 void ElasticRod::update_source_frames() {
   for (int j = 0; j < num_edges(); ++j) {
     source_[j].tangent = tangent(j);

@@ -70,6 +70,12 @@ class ElasticRod {
   const std::vector<SourceFrame>& source_frames() const { return source_; }
   // Reference twist at interior vertex i (1 <= i <= n - 1).
   double reference_twist(int i) const { return reference_twist_[i]; }
+  // Reference twists at the last source update (the branch each reference
+  // twist is unwrapped towards), per node.
+  const std::vector<double>& twist_hints() const { return twist_hint_; }
+  // Restores a saved configuration with its source frames and twist hints.
+  void restore(const std::vector<Eigen::Vector3d>& nodes, const std::vector<double>& thetas,
+               const std::vector<SourceFrame>& source_frames, const std::vector<double>& twist_hints);
   // Moves every source frame to the current reference frame: nothing about
   // the configuration or the energy changes.
   void update_source_frames();

@@ -29,7 +29,8 @@ const json kFull = json::parse(R"({
                {"vertex": 4, "fix": ["z"]}],
   "loads": {"gravity": [0, 0, -9810], "forces": [{"vertex": 3, "force": [1, 2, 3]}]},
   "solver": {"method": "kinetic-damping", "gradient_tolerance": 1e-8, "max_iterations": 50,
-             "mass": "fictitious", "damping": 0.5, "first_order": true, "max_steps": 700},
+             "mass": "fictitious", "damping": 0.5, "first_order": true, "max_steps": 700,
+             "line_search": "kinsol"},
   "output": {"directory": "/tmp/results", "every": 5, "format": "ascii", "solids": true,
              "progress": false},
   "deployment": {"joint_angles": [{"vertex": 2, "angle": 1.5}, {"vertex": 3, "angle": 2}],
@@ -100,10 +101,11 @@ TEST_CASE("config: defaults are filled in") {
   CHECK(c.solver.method == SolverMethod::Newton);
   CHECK(c.solver.gradient_tolerance == 1e-6);
   CHECK(c.solver.max_iterations == 100);
-  CHECK(c.solver.mass == MassModel::Physical);
+  CHECK(c.solver.mass == MassSetting::Physical);
   CHECK_FALSE(c.solver.damping.has_value());
   CHECK_FALSE(c.solver.first_order);
   CHECK(c.solver.max_steps == 5000);
+  CHECK(c.solver.line_search == LineSearchSetting::Energy);
   CHECK(c.output.directory == "/runs/a/out");
   CHECK(c.output.every == 1);
   CHECK(c.output.format == OutputFormat::Binary);
@@ -132,9 +134,10 @@ TEST_CASE("config: every key is read") {
   CHECK(c.solver.method == SolverMethod::KineticDamping);
   CHECK(c.solver.gradient_tolerance == 1e-8);
   CHECK(c.solver.max_iterations == 50);
-  CHECK(c.solver.mass == MassModel::Fictitious);
+  CHECK(c.solver.mass == MassSetting::Fictitious);
   CHECK(c.solver.damping == 0.5);
   CHECK(c.solver.first_order);
+  CHECK(c.solver.line_search == LineSearchSetting::Kinsol);
   CHECK(c.solver.max_steps == 700);
   CHECK(c.output.directory == "/tmp/results");
   CHECK(c.output.every == 5);

@@ -5,8 +5,8 @@
 #include <fstream>
 
 #include "demo_snapshot.hpp"
-#include "io/vtk/atomic_file.hpp"
-#include "io/vtk/output_error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/output_error.hpp"
 #include "io/vtk/rods_file.hpp"
 #include "io/vtk/vtk_series.hpp"
 #include "vtk_test_support.hpp"

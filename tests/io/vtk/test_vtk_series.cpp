@@ -8,7 +8,7 @@
 #include <set>
 
 #include "demo_snapshot.hpp"
-#include "io/vtk/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "io/vtk/vtk_series.hpp"
 #include "vtk_test_support.hpp"
 

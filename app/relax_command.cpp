@@ -1,0 +1,270 @@
+#include "relax_command.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "exit_status.hpp"
+#include "integrators/dynamics.hpp"
+#include "integrators/linkage_objective.hpp"
+#include "integrators/newton.hpp"
+#include "io/config.hpp"
+#include "io/input_error.hpp"
+#include "io/obj_reader.hpp"
+#include "io/output_error.hpp"
+#include "io/problem_setup.hpp"
+#include "io/state_file.hpp"
+#include "io/summary_file.hpp"
+#include "io/vtk/linkage_snapshot.hpp"
+#include "io/vtk/vtk_series.hpp"
+#include "linkage/model_error.hpp"
+
+namespace xshell {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+SolverMethod parse_method(const std::string& name) {
+  if (name == "newton") return SolverMethod::Newton;
+  if (name == "dynamics") return SolverMethod::Dynamics;
+  if (name == "kinetic-damping") return SolverMethod::KineticDamping;
+  throw InputError("--solver: unknown solver \"" + name + "\" (choose newton or dynamics)");
+}
+
+// Features the configuration can name but this version does not run yet:
+// refuse them clearly rather than ignore them.
+void check_available(const Config& config) {
+  if (config.joints == JointModel::EdgeVectors)
+    throw InputError(config.source + ": joints: \"edge_vectors\" joints are not available in this version; use \"rotation\"");
+  if (config.solver.method == SolverMethod::KineticDamping)
+    throw InputError(config.source + ": solver.method: \"kinetic-damping\" is not available in this version; use \"newton\" or \"dynamics\"");
+  if (config.deployment)
+    throw InputError(config.source + ": deployment: deployment is not available in this version");
+}
+
+const char* method_name(SolverMethod m) { return m == SolverMethod::Newton ? "newton" : "dynamics"; }
+
+std::string status_name(NewtonStatus s) {
+  switch (s) {
+    case NewtonStatus::Converged: return "converged";
+    case NewtonStatus::MaxIterations: return "max_iterations";
+    case NewtonStatus::LinearSolverFailed: return "linear_solver_failed";
+    case NewtonStatus::LineSearchFailed: return "line_search_failed";
+    case NewtonStatus::NonFinite: return "non_finite";
+    case NewtonStatus::Interrupted: return "interrupted";
+  }
+  return "unknown";
+}
+
+std::string status_name(DynamicsStatus s) {
+  switch (s) {
+    case DynamicsStatus::Converged: return "converged";
+    case DynamicsStatus::MaxSteps: return "max_iterations";
+    case DynamicsStatus::LinearSolverFailed: return "linear_solver_failed";
+    case DynamicsStatus::IntegratorFailed: return "integrator_failed";
+    case DynamicsStatus::NonFinite: return "non_finite";
+    case DynamicsStatus::Interrupted: return "interrupted";
+  }
+  return "unknown";
+}
+
+// Writes every output of a run; remembers the first output error so that
+// solver callbacks never throw.
+class Outputs {
+ public:
+  Outputs(const fs::path& dir, const Config& config, const LinkageProblem& problem, const Eigen::Vector3d& origin)
+      : dir_(dir), problem_(problem), origin_(origin) {
+    SeriesOptions options;
+    options.every = config.output.every;
+    options.format = config.output.format == OutputFormat::Ascii ? VtkFormat::Ascii : VtkFormat::Binary;
+    const long edges = static_cast<long>(problem.linkage().num_segments()) * config.subdivisions;
+    options.solids = config.output.solids == Toggle::On || (config.output.solids == Toggle::Auto && edges <= 20000);
+    series_.emplace(dir, options);
+  }
+
+  // A step of the run; force for the first and final states.
+  void step(double time, bool force) {
+    if (failed() || (!force && time == last_time_)) return;
+    if (force && time == last_time_) return;  // already written
+    try {
+      if (series_->write(linkage_snapshot(problem_.linkage(), origin_, time), force)) last_time_ = time;
+    } catch (const std::exception& e) {
+      error_ = e.what();
+    }
+  }
+
+  void finish(const RunSummary& summary) {
+    try {
+      series_->close();
+      write_state((dir_ / "state.json").string(), problem_.linkage(), origin_);
+      write_summary((dir_ / "summary.json").string(), summary);
+    } catch (const std::exception& e) {
+      if (!failed()) error_ = e.what();
+    }
+  }
+
+  bool failed() const { return !error_.empty(); }
+  const std::string& error() const { return error_; }
+
+ private:
+  fs::path dir_;
+  const LinkageProblem& problem_;
+  Eigen::Vector3d origin_;
+  std::optional<VtkSeries> series_;
+  double last_time_ = -1.0;
+  std::string error_;
+};
+
+bool progress_enabled(const RelaxArguments& args, const Config& config) {
+  if (args.quiet) return false;
+  if (args.verbose || config.output.progress == Toggle::On) return true;
+  if (config.output.progress == Toggle::Off) return false;
+  return isatty(STDERR_FILENO) != 0;
+}
+
+}  // namespace
+
+int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
+  const auto start = std::chrono::steady_clock::now();
+  Config config;
+  std::optional<LinkageProblem> problem;
+  ProblemSetup setup;
+  try {
+    config = read_config(args.config);
+    if (args.solver) config.solver.method = parse_method(*args.solver);
+    if (args.out) config.output.directory = fs::absolute(*args.out).string();
+    check_available(config);
+    const LineGraph graph = read_obj(config.linkage);
+    setup = make_problem_setup(config, graph);
+    RodLinkage linkage(setup.graph, setup.options);
+    if (args.init) read_state(*args.init, linkage, setup.origin);
+    problem.emplace(std::move(linkage), setup.statics);
+  } catch (const InputError& e) {
+    std::cerr << "xshell: error: " << e.what() << "\n";
+    return kExitInvalidInput;
+  } catch (const ModelError& e) {
+    std::cerr << "xshell: error: " << (config.linkage.empty() ? args.config : config.linkage) << ": " << e.what() << "\n";
+    return kExitInvalidInput;
+  }
+
+  const fs::path dir = config.output.directory;
+  std::optional<Outputs> outputs;
+  try {
+    outputs.emplace(dir, config, *problem, setup.origin);
+  } catch (const std::exception& e) {
+    std::cerr << "xshell: error: cannot write the output directory: " << e.what() << "\n";
+    return kExitOutputFailed;
+  }
+  if (problem->default_support_vertex() >= 0)
+    std::cerr << "xshell: no supports given: pinning position and orientation of vertex "
+              << problem->default_support_vertex() << " (the joint nearest the centre)\n";
+
+  const bool progress = progress_enabled(args, config);
+  RunSummary summary;
+  summary.solver = method_name(config.solver.method);
+  summary.unknowns = problem->linkage().num_dofs();
+  summary.free_unknowns = problem->num_free();
+  summary.gradient_tolerance = config.solver.gradient_tolerance;
+  if (problem->default_support_vertex() >= 0) summary.default_support = problem->default_support_vertex();
+  summary.configuration = to_json(config);
+  summary.version = XSHELL_VERSION;
+
+  // The solvers stop on this flag: raised by a signal or an output failure.
+  std::atomic<bool> halt{false};
+  auto poll = [&] {
+    if (stop.load() || outputs->failed()) halt = true;
+  };
+  outputs->step(0.0, true);
+
+  LinkageObjective objective(*problem);
+  bool interrupted = false;
+  if (config.solver.method == SolverMethod::Newton) {
+    NewtonOptions options;
+    options.gradient_tolerance = config.solver.gradient_tolerance;
+    options.max_iterations = config.solver.max_iterations;
+    options.line_search = config.solver.line_search == LineSearchSetting::Energy
+                              ? LineSearch::Energy
+                              : LineSearch::KinsolWithEnergyFallback;
+    NewtonCallbacks callbacks;
+    callbacks.stop = &halt;
+    callbacks.on_iteration = [&](const NewtonReport& r) {
+      summary.history.push_back({r.iteration, double(r.iteration), r.energy, r.gradient_measure, r.step_norm, 0.0, r.seconds});
+      if (progress)
+        std::fprintf(stderr, "newton %4d  energy %.10e  gradient %.3e  step %.3e  factorizations %ld%s  %.3f s\n",
+                     r.iteration, r.energy, r.gradient_measure, r.step_norm, r.factorizations,
+                     r.shifted ? " (shifted)" : "", r.seconds);
+      if (r.iteration > 0) outputs->step(r.iteration, false);
+      poll();
+    };
+    poll();
+    const NewtonResult result = solve_newton(objective, options, callbacks);
+    summary.status = status_name(result.status);
+    summary.reason = result.reason;
+    summary.converged = result.converged();
+    summary.stable = result.stable;
+    summary.iterations = result.iterations;
+    summary.gradient_norm = result.gradient_measure;
+    interrupted = result.status == NewtonStatus::Interrupted;
+    outputs->step(result.iterations, true);
+  } else {
+    DynamicsOptions options;
+    options.form = config.solver.first_order ? DynamicsForm::FirstOrder : DynamicsForm::SecondOrder;
+    options.mass = config.solver.mass == MassSetting::Fictitious ? MassModel::Fictitious : MassModel::Physical;
+    options.damping = config.solver.damping.value_or(0.0);
+    options.gradient_tolerance = config.solver.gradient_tolerance;
+    options.max_steps = config.solver.max_steps;
+    DynamicsCallbacks callbacks;
+    callbacks.stop = &halt;
+    callbacks.on_step = [&](const DynamicsReport& r) {
+      summary.history.push_back({r.step, r.time, r.energy, r.gradient_measure, r.step_size, r.kinetic_energy, 0.0});
+      if (progress)
+        std::fprintf(stderr, "dynamics %6ld  t %.4e  dt %.3e  energy %.10e  kinetic %.3e  gradient %.3e\n", r.step,
+                     r.time, r.step_size, r.energy, r.kinetic_energy, r.gradient_measure);
+      if (r.step > 0) outputs->step(r.time, false);
+      poll();
+    };
+    poll();
+    const DynamicsResult result = solve_dynamics(objective, options, callbacks);
+    summary.status = status_name(result.status);
+    summary.reason = result.reason;
+    summary.converged = result.converged();
+    summary.stable = result.stable;
+    summary.iterations = result.steps;
+    summary.simulated_time = result.time;
+    summary.gradient_norm = result.gradient_measure;
+    interrupted = result.status == DynamicsStatus::Interrupted;
+    outputs->step(result.time, true);
+  }
+  interrupted = interrupted && stop.load();
+  if (interrupted) {
+    summary.status = "interrupted";
+    summary.reason = "interrupted by a signal";
+  }
+  summary.interrupted = interrupted;
+  summary.energy = problem->energy();
+  summary.vertices = problem->vertex_positions();
+  for (auto& v : summary.vertices) v += setup.origin;
+  summary.opening_angles = problem->opening_angles();
+  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const bool failed_before_finish = outputs->failed();
+  outputs->finish(summary);
+  if (outputs->failed()) {
+    std::cerr << "xshell: error: " << outputs->error() << "\n";
+    return kExitOutputFailed;
+  }
+  (void)failed_before_finish;
+
+  std::fprintf(stderr, "xshell: %s after %ld %s: %s; energy %.10e, gradient %.3e (tolerance %.1e), %s; outputs in %s\n",
+               summary.status.c_str(), summary.iterations,
+               config.solver.method == SolverMethod::Newton ? "iterations" : "steps", summary.reason.c_str(),
+               summary.energy.total(), summary.gradient_norm, summary.gradient_tolerance,
+               summary.stable ? "stable" : "NOT stable (a saddle or a mechanism)", dir.string().c_str());
+  if (interrupted) return kExitInterrupted;
+  return summary.converged ? kExitConverged : kExitNotConverged;
+}
+
+}  // namespace xshell

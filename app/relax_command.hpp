@@ -1,0 +1,23 @@
+// `xshell relax CONFIG.json [--solver newton|dynamics] [--out DIR] [--init STATE.json]`
+#pragma once
+
+#include <atomic>
+#include <optional>
+#include <string>
+
+namespace xshell {
+
+struct RelaxArguments {
+  std::string config;                 // path of the configuration
+  std::optional<std::string> solver;  // "newton" | "dynamics" | "kinetic-damping"
+  std::optional<std::string> out;     // output directory (relative to the working directory)
+  std::optional<std::string> init;    // a state.json to start from
+  bool quiet = false;                 // no progress lines
+  bool verbose = false;               // progress lines even when stderr is not a terminal
+};
+
+// Runs the command; returns the exit status (exit_status.hpp). `stop` is
+// raised by SIGINT/SIGTERM.
+int run_relax(const RelaxArguments& arguments, const std::atomic<bool>& stop);
+
+}  // namespace xshell

@@ -1,0 +1,62 @@
+// Sparse Cholesky (LL^T) factorization with CHOLMOD for symmetric matrices
+// whose sparsity pattern stays fixed over many factorizations (Hessians).
+//
+// The symbolic analysis (fill-reducing ordering as CHOLMOD chooses it,
+// supernodal structure) is computed once per pattern and reused by every
+// numeric factorization until a matrix with a different pattern arrives.
+// Only the upper triangle of the (full, both-triangles) input is read. A
+// diagonal shift can be added without rebuilding the pattern: the solver
+// keeps its own upper-triangular copy whose pattern always contains the
+// diagonal.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <memory>
+
+namespace xshell {
+
+enum class FactorizationStatus {
+  PositiveDefinite,     // LL^T succeeded; solve() may be called
+  NotPositiveDefinite,  // a pivot was not positive (indefinite or singular)
+  NonFinite,            // the matrix or the shift holds NaN or inf
+};
+
+// Counters for benchmarks and tests.
+struct CholeskyStats {
+  long analyses = 0;               // symbolic analyses
+  long factorizations = 0;         // numeric factorizations attempted
+  long failed_factorizations = 0;  // of which not positive definite
+  long solves = 0;
+};
+
+class CholeskySolver {
+ public:
+  CholeskySolver();
+  ~CholeskySolver();
+  CholeskySolver(CholeskySolver&&) noexcept;
+  CholeskySolver& operator=(CholeskySolver&&) noexcept;
+
+  // Numeric factorization of A + diag(diagonal_shift). A: n x n, symmetric,
+  // compressed; only entries with row <= column are read. diagonal_shift:
+  // size n or nullptr for none. Analyzes the pattern first if it is new.
+  FactorizationStatus factorize(const Eigen::SparseMatrix<double>& A,
+                                const Eigen::VectorXd* diagonal_shift = nullptr);
+
+  // True after a factorize() that returned PositiveDefinite.
+  bool factorized() const;
+
+  // x = (A + diag(shift))^-1 b with the last successful factorization.
+  // b, x: size n (may alias). Throws std::logic_error if not factorized().
+  void solve(const double* b, double* x);
+  Eigen::VectorXd solve(const Eigen::VectorXd& b);
+
+  Eigen::Index size() const;
+  const CholeskyStats& stats() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace xshell

@@ -1,0 +1,53 @@
+#include "mass_and_damping.hpp"
+
+#include <cmath>
+#include <random>
+
+namespace xshell {
+
+Eigen::VectorXd fictitious_mass(const Eigen::SparseMatrix<double>& H, double floor_ratio) {
+  Eigen::VectorXd m = Eigen::VectorXd::Zero(H.rows());
+  for (int j = 0; j < H.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(H, j); it; ++it)
+      m[it.row()] += std::abs(it.value());
+  const double largest = m.size() > 0 ? m.maxCoeff() : 0.0;
+  if (!(largest > 0.0) || !std::isfinite(largest)) return Eigen::VectorXd::Ones(H.rows());
+  return m.cwiseMax(floor_ratio * largest);
+}
+
+LowestMode estimate_lowest_mode(CholeskySolver& solver, const Eigen::SparseMatrix<double>& H,
+                                const Eigen::VectorXd& mass, int iterations,
+                                const ShiftOptions& shift) {
+  LowestMode mode;
+  const ShiftedFactorization f = factorize_with_shift(solver, H, mass, shift);
+  mode.shifted = f.shifted;
+  if (f.status != FactorizationStatus::PositiveDefinite) return mode;
+
+  // A fixed pseudo-random start: not orthogonal to the lowest mode in practice.
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  Eigen::VectorXd x(H.rows());
+  for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = uniform(rng);
+  auto m_normalize = [&](Eigen::VectorXd& y) { y /= std::sqrt(y.dot(mass.cwiseProduct(y))); };
+  m_normalize(x);
+  for (int k = 0; k < iterations; ++k) {
+    x = solver.solve(Eigen::VectorXd(mass.cwiseProduct(x)));
+    m_normalize(x);
+    ++mode.iterations;
+  }
+  mode.eigenvalue = x.dot(H * x) / x.dot(mass.cwiseProduct(x));
+  mode.ok = std::isfinite(mode.eigenvalue);
+  return mode;
+}
+
+double automatic_damping(const LowestMode& mode, const Eigen::SparseMatrix<double>& H,
+                         const Eigen::VectorXd& mass) {
+  double trace = 0.0;
+  for (Eigen::Index i = 0; i < H.rows(); ++i) trace += std::abs(H.coeff(i, i));
+  const double floor = 1e-12 * trace / mass.sum();
+  const double lambda = mode.ok ? std::max(std::abs(mode.eigenvalue), floor) : floor;
+  const double c = 2.0 * std::sqrt(lambda);
+  return c > 0.0 && std::isfinite(c) ? c : 1.0;
+}
+
+}  // namespace xshell

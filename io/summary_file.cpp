@@ -1,0 +1,52 @@
+#include "summary_file.hpp"
+
+#include "atomic_file.hpp"
+
+namespace xshell {
+
+nlohmann::json to_json(const RunSummary& s) {
+  using nlohmann::json;
+  json vertices = json::array(), angles = json::array(), history = json::array();
+  for (const auto& v : s.vertices) vertices.push_back({v.x(), v.y(), v.z()});
+  for (const auto& a : s.opening_angles) angles.push_back(a ? json(*a) : json(nullptr));
+  for (const auto& h : s.history)
+    history.push_back({{"iteration", h.iteration},
+                       {"time", h.time},
+                       {"energy", h.energy},
+                       {"gradient_norm", h.gradient_norm},
+                       {"step", h.step},
+                       {"kinetic_energy", h.kinetic_energy},
+                       {"seconds", h.seconds}});
+  json out = {{"status", s.status},
+              {"reason", s.reason},
+              {"converged", s.converged},
+              {"stable", s.stable},
+              {"interrupted", s.interrupted},
+              {"solver", s.solver},
+              {"iterations", s.iterations},
+              {"simulated_time", s.simulated_time ? json(*s.simulated_time) : json(nullptr)},
+              {"wall_seconds", s.wall_seconds},
+              {"unknowns", s.unknowns},
+              {"free_unknowns", s.free_unknowns},
+              {"gradient_norm", s.gradient_norm},
+              {"gradient_tolerance", s.gradient_tolerance},
+              {"energy",
+               {{"total", s.energy.total()},
+                {"stretching", s.energy.stretching},
+                {"bending", s.energy.bending},
+                {"twisting", s.energy.twisting},
+                {"external", s.energy.external}}},
+              {"vertices", vertices},
+              {"opening_angles", angles},
+              {"default_support", s.default_support ? json(*s.default_support) : json(nullptr)},
+              {"history", history},
+              {"configuration", s.configuration},
+              {"version", s.version}};
+  return out;
+}
+
+void write_summary(const std::string& path, const RunSummary& summary) {
+  write_file_atomically(path, to_json(summary).dump(2) + "\n");
+}
+
+}  // namespace xshell

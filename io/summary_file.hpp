@@ -1,0 +1,71 @@
+// summary.json: what a run of `xshell relax` found, for people and tools.
+//
+// Fields (units are those of the configuration):
+//   status            "converged" | "max_iterations" | "linear_solver_failed" |
+//                     "line_search_failed" | "integrator_failed" | "non_finite" | "interrupted"
+//   reason            one line
+//   converged, stable, interrupted   booleans; stable: an LL^T factorization of the free
+//                     Hessian succeeded at the final state (a saddle is never stable)
+//   solver            "newton" | "dynamics"
+//   iterations        Newton iterations or dynamics steps
+//   simulated_time    dynamics only
+//   wall_seconds
+//   unknowns, free_unknowns
+//   gradient_norm     the dimensionless convergence measure (max scaled free gradient)
+//   gradient_tolerance
+//   energy            {total, stretching, bending, twisting, external}; external =
+//                     -sum f . (x - x_input), included in total
+//   vertices          per graph vertex in file order: [x, y, z] of a joint's position or a
+//                     free end's end node
+//   opening_angles    per vertex, radians; null for free ends
+//   default_support   the vertex pinned when no support was given, else null
+//   history           per iteration/step: {iteration, time, energy, gradient_norm, step,
+//                     kinetic_energy, seconds}
+//   configuration     the resolved configuration; version: the program's version
+#pragma once
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "linkage/statics_problem.hpp"
+
+namespace xshell {
+
+struct IterationRecord {
+  long iteration = 0;
+  double time = 0.0;  // simulated time (dynamics) or the iteration index (Newton)
+  double energy = 0.0;
+  double gradient_norm = 0.0;
+  double step = 0.0;  // Newton step max-norm or time step size
+  double kinetic_energy = 0.0;
+  double seconds = 0.0;
+};
+
+struct RunSummary {
+  std::string status;
+  std::string reason;
+  bool converged = false, stable = false, interrupted = false;
+  std::string solver;
+  long iterations = 0;
+  std::optional<double> simulated_time;
+  double wall_seconds = 0.0;
+  int unknowns = 0, free_unknowns = 0;
+  double gradient_norm = 0.0, gradient_tolerance = 0.0;
+  EnergyReport energy;
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::optional<double>> opening_angles;
+  std::optional<int> default_support;
+  std::vector<IterationRecord> history;
+  nlohmann::json configuration;
+  std::string version;
+};
+
+nlohmann::json to_json(const RunSummary& summary);
+
+// Writes summary.json atomically; throws OutputError.
+void write_summary(const std::string& path, const RunSummary& summary);
+
+}  // namespace xshell

@@ -1,0 +1,234 @@
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "integrators/dynamics.hpp"
+#include "integrators/newton.hpp"
+#include "toy_objectives.hpp"
+
+using namespace xshell;
+using namespace xshell::test;
+
+namespace {
+
+struct DynamicsRun {
+  DynamicsResult result;
+  std::vector<DynamicsReport> reports;
+
+  // Largest rise of E + kinetic energy between consecutive steps.
+  double max_total_energy_rise() const {
+    double rise = 0.0;
+    for (size_t k = 1; k < reports.size(); ++k) {
+      const double before = reports[k - 1].energy + reports[k - 1].kinetic_energy;
+      const double after = reports[k].energy + reports[k].kinetic_energy;
+      rise = std::max(rise, after - before);
+    }
+    return rise;
+  }
+};
+
+DynamicsRun run_dynamics(Objective& objective, const DynamicsOptions& options,
+                         const std::atomic<bool>* stop = nullptr) {
+  DynamicsRun run;
+  DynamicsCallbacks callbacks;
+  callbacks.stop = stop;
+  callbacks.on_step = [&](const DynamicsReport& r) { run.reports.push_back(r); };
+  run.result = solve_dynamics(objective, options, callbacks);
+  return run;
+}
+
+DynamicsOptions tight(DynamicsForm form, MassModel mass) {
+  DynamicsOptions options;
+  options.form = form;
+  options.mass = mass;
+  options.gradient_tolerance = 1e-10;
+  return options;
+}
+
+std::string label(const DynamicsOptions& o) {
+  return std::string(o.form == DynamicsForm::SecondOrder ? "second order" : "first order") + ", " +
+         (o.mass == MassModel::Physical ? "physical mass" : "fictitious mass");
+}
+
+struct Toy {
+  std::string name;
+  std::function<Eigen::VectorXd(const std::function<void(Objective&)>&)>
+      run;  // returns configuration
+};
+
+// Solves a fresh copy of a toy with `solve` and returns its final configuration.
+template <class Make>
+Eigen::VectorXd solve_fresh(Make make, const std::function<void(Objective&)>& solve) {
+  StencilObjective objective = make();
+  solve(objective);
+  return objective.configuration();
+}
+
+std::vector<Toy> toys() {
+  std::vector<Toy> list;
+  list.push_back(
+      {"chain", [](const auto& solve) { return solve_fresh([] { return make_chain(); }, solve); }});
+  list.push_back({"rosenbrock", [](const auto& solve) {
+                    return solve_fresh([] { return make_rosenbrock(8); }, solve);
+                  }});
+  list.push_back({"buckled column", [](const auto& solve) {
+                    ColumnOptions o;
+                    o.imperfection = 0.05;
+                    return solve_fresh([o] { return make_column(o); }, solve);
+                  }});
+  list.push_back({"offset chain", [](const auto& solve) {
+                    StencilObjective inner = make_chain();
+                    OffsetObjective offset(inner, 0.3);
+                    solve(offset);
+                    return offset.configuration();
+                  }});
+  return list;
+}
+
+}  // namespace
+
+TEST_CASE("damped dynamics reaches Newton's equilibria, with energy decreasing") {
+  NewtonOptions newton;
+  newton.gradient_tolerance = 1e-10;
+  newton.max_iterations = 500;
+  int compared = 0;
+  for (const Toy& toy : toys()) {
+    const Eigen::VectorXd reference = toy.run([&](Objective& o) {
+      const NewtonResult r = solve_newton(o, newton);
+      REQUIRE(r.converged());
+      REQUIRE(r.stable);
+    });
+    for (DynamicsForm form : {DynamicsForm::SecondOrder, DynamicsForm::FirstOrder})
+      for (MassModel mass : {MassModel::Physical, MassModel::Fictitious}) {
+        const DynamicsOptions options = tight(form, mass);
+        DynamicsRun run;
+        const Eigen::VectorXd q = toy.run([&](Objective& o) { run = run_dynamics(o, options); });
+        const double distance = (q - reference).norm() / reference.norm();
+        const double drop = run.reports.front().energy - run.result.energy;
+        const double rise = run.max_total_energy_rise();
+        INFO(toy.name << ", " << label(options) << ": " << run.result.reason);
+        REQUIRE(run.result.status == DynamicsStatus::Converged);
+        CHECK(run.result.gradient_measure <= 1e-10);
+        CHECK(run.result.stable);
+        CHECK(distance < 1e-6);
+        CHECK(drop > 0.0);
+        CHECK(rise <= 1e-6 * drop);  // E + K never increases beyond round-off/truncation
+        CHECK(run.result.steps == static_cast<long>(run.reports.size()) - 1);
+        // Steps grow as the motion dies out.
+        CHECK(run.reports.back().step_size > 100.0 * run.reports[1].step_size);
+        ++compared;
+        MESSAGE(toy.name << ", " << label(options) << ": " << run.result.steps << " steps, "
+                         << run.result.rebases << " rebases, " << run.result.factorizations
+                         << " factorizations, c = " << run.result.damping << ", t = "
+                         << run.result.time << ", last h = " << run.reports.back().step_size
+                         << ", |dq|/|q| = " << distance << ", max rise of E+K = " << rise
+                         << " (drop " << drop << "), " << run.result.seconds << " s");
+      }
+  }
+  CHECK(compared == 16);
+}
+
+TEST_CASE("damped dynamics near the column's saddle") {
+  NewtonOptions newton;
+  newton.gradient_tolerance = 1e-10;
+  ColumnOptions far;
+  far.imperfection = 0.05;
+  StencilObjective reference = make_column(far);
+  REQUIRE(solve_newton(reference, newton).converged());
+  const int middle = column_middle_y(far);
+
+  SUBCASE("a tiny imperfection grows into the buckled minimum") {
+    for (DynamicsForm form : {DynamicsForm::SecondOrder, DynamicsForm::FirstOrder}) {
+      ColumnOptions near = far;
+      near.imperfection = 1e-4;
+      StencilObjective column = make_column(near);
+      const DynamicsRun run = run_dynamics(column, tight(form, MassModel::Physical));
+      INFO(label(tight(form, MassModel::Physical)) << ": " << run.result.reason);
+      REQUIRE(run.result.status == DynamicsStatus::Converged);
+      CHECK(run.result.stable);
+      CHECK(column.get()[middle] > 0.05);  // buckled towards the imperfection
+      CHECK((column.get() - reference.get()).norm() < 1e-6 * reference.get().norm());
+      CHECK(run.max_total_energy_rise() <= 1e-6 * (run.reports.front().energy - run.result.energy));
+      MESSAGE("column from imperfection 1e-4, " << label(tight(form, MassModel::Physical)) << ": "
+                                                << run.result.steps
+                                                << " steps, t = " << run.result.time);
+    }
+  }
+  SUBCASE("an exactly straight start stays on the saddle, reported unstable") {
+    StencilObjective column = make_column({});
+    const DynamicsRun run =
+        run_dynamics(column, tight(DynamicsForm::FirstOrder, MassModel::Physical));
+    INFO(run.result.reason);
+    REQUIRE(run.result.status == DynamicsStatus::Converged);
+    CHECK(column.get()[middle] == 0.0);
+    CHECK_FALSE(run.result.stable);
+  }
+}
+
+TEST_CASE("damped dynamics: stop flag, step limit and non-finite values") {
+  SUBCASE("stop flag") {
+    StencilObjective chain = make_chain();
+    std::atomic<bool> stop{false};
+    DynamicsRun run;
+    DynamicsCallbacks callbacks;
+    callbacks.stop = &stop;
+    callbacks.on_step = [&](const DynamicsReport& r) {
+      run.reports.push_back(r);
+      if (r.step == 5) stop = true;
+    };
+    run.result =
+        solve_dynamics(chain, tight(DynamicsForm::SecondOrder, MassModel::Physical), callbacks);
+    CHECK(run.result.status == DynamicsStatus::Interrupted);
+    CHECK(run.result.steps == 5);
+    CHECK(run.reports.size() == 6);
+    CHECK(std::isfinite(chain.energy()));
+  }
+  SUBCASE("step limit") {
+    StencilObjective chain = make_chain();
+    DynamicsOptions options = tight(DynamicsForm::SecondOrder, MassModel::Physical);
+    options.max_steps = 7;
+    const DynamicsRun run = run_dynamics(chain, options);
+    CHECK(run.result.status == DynamicsStatus::MaxSteps);
+    CHECK(run.result.steps == 7);
+  }
+  SUBCASE("NaN at the start") {
+    SqrtWell well(Eigen::VectorXd::Constant(3, -1.0), InvalidBehaviour::NaN);
+    const DynamicsRun run =
+        run_dynamics(well, tight(DynamicsForm::SecondOrder, MassModel::Physical));
+    CHECK(run.result.status == DynamicsStatus::NonFinite);
+    CHECK(run.result.steps == 0);
+    CHECK_FALSE(run.result.stable);
+  }
+  SUBCASE("the motion runs into a NaN region: NonFinite, left at the last good step") {
+    const Eigen::VectorXd start = Eigen::VectorXd::Constant(3, 4.0);
+    SqrtWell well(start, InvalidBehaviour::NaN, 3.9);  // the minimum x = 1 is unreachable
+    const DynamicsRun run =
+        run_dynamics(well, tight(DynamicsForm::FirstOrder, MassModel::Physical));
+    INFO(run.result.reason);
+    CHECK(run.result.status == DynamicsStatus::NonFinite);
+    CHECK(well.invalid_encounters() > 0);
+    CHECK(std::isfinite(well.energy()));
+    CHECK((well.get().array() >= 3.9).all());
+    CHECK(run.result.steps == static_cast<long>(run.reports.size()) - 1);
+  }
+  SUBCASE("the motion runs into invalid configurations: IntegratorFailed") {
+    SqrtWell well(Eigen::VectorXd::Constant(3, 4.0), InvalidBehaviour::Throw, 3.9);
+    const DynamicsRun run =
+        run_dynamics(well, tight(DynamicsForm::SecondOrder, MassModel::Physical));
+    INFO(run.result.reason);
+    CHECK(run.result.status == DynamicsStatus::IntegratorFailed);
+    CHECK(well.invalid_encounters() > 0);
+    CHECK((well.get().array() >= 3.9).all());
+  }
+}
+
+TEST_CASE("an unexpected exception inside an IDA callback reaches the caller") {
+  StencilObjective chain = make_chain();
+  FaultyObjective faulty(chain, 5);
+  CHECK_THROWS_AS(solve_dynamics(faulty, tight(DynamicsForm::SecondOrder, MassModel::Physical)),
+                  std::runtime_error);
+  CHECK(faulty.calls() >= 5);
+}

@@ -1,0 +1,68 @@
+#include <doctest/doctest.h>
+
+#include "integrators/mass_and_damping.hpp"
+
+using namespace xshell;
+
+namespace {
+
+// Tridiagonal-free test matrix: diag(d) with symmetric couplings c between
+// neighbours i, i+1 for even i (2x2 blocks with known eigenvalues).
+Eigen::SparseMatrix<double> blocks(const Eigen::VectorXd& d, double c) {
+  const int n = static_cast<int>(d.size());
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) t.emplace_back(i, i, d[i]);
+  for (int i = 0; i + 1 < n; i += 2) {
+    t.emplace_back(i, i + 1, c);
+    t.emplace_back(i + 1, i, c);
+  }
+  Eigen::SparseMatrix<double> H(n, n);
+  H.setFromTriplets(t.begin(), t.end());
+  H.makeCompressed();
+  return H;
+}
+
+}  // namespace
+
+TEST_CASE("fictitious masses are the absolute row sums of the Hessian") {
+  const Eigen::SparseMatrix<double> H = blocks(Eigen::Vector4d(2.0, -3.0, 5.0, 0.0), 0.5);
+  const Eigen::VectorXd m = fictitious_mass(H);
+  CHECK(m[0] == doctest::Approx(2.5));
+  CHECK(m[1] == doctest::Approx(3.5));
+  CHECK(m[2] == doctest::Approx(5.5));
+  CHECK(m[3] == doctest::Approx(0.5));
+  Eigen::SparseMatrix<double> zero(3, 3);
+  CHECK(fictitious_mass(zero) == Eigen::VectorXd::Ones(3));
+}
+
+TEST_CASE("inverse iteration finds the lowest eigenvalue of (H, M)") {
+  // Blocks [[d0, c], [c, d1]] / mass: with M = diag(m) constant per block the
+  // eigenvalues are those of the block divided by m.
+  Eigen::VectorXd d(6);
+  d << 4.0, 6.0, 9.0, 9.0, 20.0, 30.0;
+  const double c = 1.0;
+  Eigen::VectorXd mass = Eigen::VectorXd::Constant(6, 2.0);
+  const Eigen::SparseMatrix<double> H = blocks(d, c);
+  // Lowest: block (4, 6, c = 1): 5 - sqrt(1 + 1) = 3.5858; / 2.
+  const double expected = (5.0 - std::sqrt(2.0)) / 2.0;
+  CholeskySolver solver;
+  const LowestMode mode = estimate_lowest_mode(solver, H, mass, 40);
+  REQUIRE(mode.ok);
+  CHECK_FALSE(mode.shifted);
+  CHECK(mode.iterations == 40);
+  CHECK(mode.eigenvalue == doctest::Approx(expected).epsilon(1e-8));
+  CHECK(automatic_damping(mode, H, mass) ==
+        doctest::Approx(2.0 * std::sqrt(expected)).epsilon(1e-8));
+
+  // Indefinite: the negative eigenvalue is found through the shift.
+  Eigen::VectorXd e = d;
+  e[2] = -3.0;  // block (-3, 9, c = 1): 3 - sqrt(36 + 1)
+  const double negative = (3.0 - std::sqrt(37.0)) / 2.0;
+  const Eigen::SparseMatrix<double> K = blocks(e, c);
+  const LowestMode unstable = estimate_lowest_mode(solver, K, mass, 60);
+  REQUIRE(unstable.ok);
+  CHECK(unstable.shifted);
+  CHECK(unstable.eigenvalue == doctest::Approx(negative).epsilon(1e-6));
+  CHECK(automatic_damping(unstable, K, mass) ==
+        doctest::Approx(2.0 * std::sqrt(-negative)).epsilon(1e-6));
+}
