@@ -60,9 +60,10 @@ enum class LineSearch {
 struct NewtonOptions {
   double gradient_tolerance = 2e-8;  // converged when max_i |w_i g_i| <= this (dimensionless)
   int max_iterations = 100;
-  // Largest step KINSOL takes (2-norm, in the units of the unknowns);
-  // longer Newton steps are scaled down (KINSetMaxNewtonStep). KINSOL's
-  // default (1000 |q0|) is meaningless for unknowns that rebase() resets.
+  // Largest step taken (2-norm, in the units of the unknowns); longer
+  // Newton steps are scaled down (KINSetMaxNewtonStep, and the energy line
+  // search). KINSOL's default (1000 |q0|) is meaningless for unknowns that
+  // rebase() resets.
   double max_step = 1e3;
   // Scaled step tolerance (KINSetScaledStepTol, and the same test after an
   // energy line search step): a step with max_i |dq_i| / (1 + |q_i|) below
@@ -77,7 +78,8 @@ enum class NewtonStatus {
   Converged,  // gradient measure <= tolerance
   MaxIterations,
   LinearSolverFailed,  // the Hessian could not be factorized, even shifted
-  LineSearchFailed,    // KINSOL found no acceptable step (or the objective rejected all)
+  LineSearchFailed,    // no acceptable step (either line search), stagnation at the
+                       // round-off floor, or the objective rejected every trial point
   NonFinite,           // NaN/inf in the energy, gradient or Hessian
   Interrupted,         // the stop flag was raised
 };

@@ -7,9 +7,11 @@
 // it, shifting it by a multiple of the mass matrix when it is indefinite
 // (see shifted_factorization.hpp). A shifted step is no longer the Newton
 // step of F and KINSOL's merit line search, which assumes J p = -F, usually
-// rejects it (descent_step.hpp). A deferred setup keeps its factorization
-// but declines (KINSol returns KIN_LSETUP_FAIL at once) so that the driver
-// can take the step itself, globalized on the energy.
+// rejects it (descent_step.hpp). A deferred setup (always with
+// LineSearch::Energy, for shifted Hessians with KinsolWithEnergyFallback)
+// keeps its factorization but declines, so that KINSol returns
+// KIN_LSETUP_FAIL at once and the driver takes the step itself, globalized
+// on the energy.
 #pragma once
 
 #include <Eigen/Core>
