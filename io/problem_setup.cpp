@@ -30,6 +30,8 @@ ProblemSetup make_problem_setup(const Config& config, const LineGraph& graph) {
 
   setup.options.subdivisions = config.subdivisions;
   setup.options.rest_shape = config.rest_shape;
+  setup.options.joint_kind =
+      config.joints == JointModel::EdgeVectors ? JointKind::EdgeVectors : JointKind::Rotation;
   setup.options.material.young_modulus = config.material.young_modulus;
   setup.options.material.poisson_ratio = config.material.poisson_ratio;
   setup.options.material.density = config.material.density;

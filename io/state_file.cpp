@@ -22,6 +22,19 @@ Eigen::Vector3d to_vec(const json& j) {
 
 const char* rest_name(RestShape r) { return r == RestShape::Input ? "input" : "straight"; }
 
+// "joint_kind": the parametrization of every joint's "params" and
+// "reference_frame" (joint.hpp); absent in files written before edge-vector
+// joints existed, which are all rotation joints. A state of the other kind is
+// converted on restore (RodLinkage::restore).
+const char* joint_kind_name(JointKind k) { return k == JointKind::Rotation ? "rotation" : "edge_vectors"; }
+
+JointKind joint_kind(const json& doc) {
+  const std::string name = doc.value("joint_kind", "rotation");
+  if (name == "rotation") return JointKind::Rotation;
+  if (name == "edge_vectors") return JointKind::EdgeVectors;
+  throw std::invalid_argument("unknown \"joint_kind\": \"" + name + "\"");
+}
+
 json fingerprint(const RodLinkage& linkage) {
   return {{"vertices", linkage.graph().vertices.size()},
           {"edges", linkage.graph().edges.size()},
@@ -69,8 +82,13 @@ void write_state(const std::string& path, const RodLinkage& linkage, const Eigen
                       {"params", std::vector<double>(js.params.data(), js.params.data() + 9)},
                       {"reference_frame", frame}});
   }
-  const json doc = {{"format", "xshell-state"}, {"version", 1},      {"fingerprint", fingerprint(linkage)},
-                    {"origin", vec(origin)},    {"segments", segments}, {"joints", joints}};
+  const json doc = {{"format", "xshell-state"},
+                    {"version", 1},
+                    {"fingerprint", fingerprint(linkage)},
+                    {"origin", vec(origin)},
+                    {"joint_kind", joint_kind_name(linkage.options().joint_kind)},
+                    {"segments", segments},
+                    {"joints", joints}};
   write_file_atomically(path, doc.dump() + "\n");
 }
 
@@ -92,6 +110,7 @@ void read_state(const std::string& path, RodLinkage& linkage, const Eigen::Vecto
     const Eigen::Vector3d saved_origin = to_vec(doc.at("origin"));
     const Eigen::Vector3d shift = saved_origin - origin;  // zero for the same graph
     LinkageState state;
+    const JointKind kind = joint_kind(doc);
     for (const json& s : doc.at("segments")) {
       SegmentState seg;
       for (const json& x : s.at("nodes")) seg.nodes.push_back(to_vec(x) + shift);
@@ -102,6 +121,7 @@ void read_state(const std::string& path, RodLinkage& linkage, const Eigen::Vecto
     }
     for (const json& j : doc.at("joints")) {
       JointState js;
+      js.kind = kind;
       const std::vector<double> p = j.at("params").get<std::vector<double>>();
       if (p.size() != 9) throw std::invalid_argument("a joint needs 9 parameters");
       for (int k = 0; k < 9; ++k) js.params[k] = p[k];
