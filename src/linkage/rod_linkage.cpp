@@ -1,13 +1,21 @@
 #include "rod_linkage.hpp"
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
+#include "edge_vector_conversion.hpp"
 #include "model_error.hpp"
 
 namespace xshell {
 
 namespace {
+std::string degrees_text(double degrees) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", degrees);
+  return buffer;
+}
+
 // Theta that turns an edge's reference frame so that d2 = n.
 double theta_for_normal(const Frame<double>& ref, const Eigen::Vector3d& n) {
   return std::atan2(-n.dot(ref.d1.values()), n.dot(ref.d2.values()));
@@ -37,7 +45,15 @@ RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
       l[x] = std::numeric_limits<double>::infinity();
       for (const SegmentEnd& end : jt.ends[x]) l[x] = std::min(l[x], edge_length[end.segment]);
     }
-    joints_.emplace_back(graph.vertices[jt.vertex], jt.tangent[0], jt.tangent[1], jt.normal, l[0], l[1]);
+    if (options.joint_kind == JointKind::EdgeVectors && nearly_parallel(jt.tangent[0], jt.tangent[1])) {
+      const double angle = std::min(jt.opening_angle, M_PI - jt.opening_angle) * 180.0 / M_PI;
+      throw ModelError("vertex " + std::to_string(jt.vertex) + ": its rods are " + degrees_text(angle) +
+                       " degrees from parallel; edge-vector joints need at least " +
+                       degrees_text(kMinEdgeVectorAngleDegrees) +
+                       " degree (their normal e_A x e_B is ill-defined there): use rotation joints");
+    }
+    joints_.emplace_back(graph.vertices[jt.vertex], jt.tangent[0], jt.tangent[1], jt.normal, l[0], l[1],
+                         options.joint_kind);
   }
 
   // Segments: nodes, least-twisted frames, rest state.
@@ -46,8 +62,7 @@ RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
     std::vector<Eigen::Vector3d> nodes(n + 1);
     int first_free = 0, last_free = n;
     if (seg.joint[0] >= 0) {
-      const Eigen::Vector3d e = seg.sign[0] * joints_[seg.joint[0]].tangent(seg.label[0]) *
-                                joints_[seg.joint[0]].params()[kLengthA + seg.label[0]];
+      const Eigen::Vector3d e = seg.sign[0] * joints_[seg.joint[0]].edge(seg.label[0]);
       nodes[0] = graph.vertices[seg.vertex[0]] - 0.5 * e;
       nodes[1] = graph.vertices[seg.vertex[0]] + 0.5 * e;
       first_free = 1;
@@ -55,8 +70,7 @@ RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
       nodes[0] = graph.vertices[seg.vertex[0]];
     }
     if (seg.joint[1] >= 0) {
-      const Eigen::Vector3d e = seg.sign[1] * joints_[seg.joint[1]].tangent(seg.label[1]) *
-                                joints_[seg.joint[1]].params()[kLengthA + seg.label[1]];
+      const Eigen::Vector3d e = seg.sign[1] * joints_[seg.joint[1]].edge(seg.label[1]);
       nodes[n - 1] = graph.vertices[seg.vertex[1]] - 0.5 * e;
       nodes[n] = graph.vertices[seg.vertex[1]] + 0.5 * e;
       last_free = n - 1;
@@ -130,6 +144,7 @@ RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
   num_dofs_ = next;
   // The joints reproduce the terminal edges and thetas just built.
   set_dofs(dofs());
+  for (const ElasticRod& rod : rods_) input_segment_dofs_.push_back(rod.dofs());
 }
 
 Eigen::VectorXd RodLinkage::dofs() const {
@@ -155,9 +170,9 @@ void RodLinkage::set_dofs(const Eigen::VectorXd& r) {
   if (r.size() != num_dofs_) throw std::invalid_argument("RodLinkage::set_dofs: wrong size");
   for (int j = 0; j < num_joints(); ++j) {
     const JointParams p = r.segment<9>(joint_offset_[j]);
-    if (!(p[kLengthA] > 0.0 && p[kLengthB] > 0.0) || !p.allFinite())
-      throw std::domain_error("joint at vertex " + std::to_string(topology_.joints[j].vertex) +
-                              ": terminal edge length must stay positive");
+    const std::string problem = joints_[j].check_params(p);
+    if (!problem.empty())
+      throw std::domain_error("joint at vertex " + std::to_string(topology_.joints[j].vertex) + ": " + problem);
     joints_[j].set_params(p);
   }
   for (int s = 0; s < num_segments(); ++s) {
@@ -181,7 +196,7 @@ LinkageState RodLinkage::state() const {
   LinkageState out;
   for (const ElasticRod& rod : rods_)
     out.segments.push_back({rod.nodes(), rod.thetas(), rod.source_frames(), rod.twist_hints()});
-  for (const Joint& joint : joints_) out.joints.push_back({joint.params(), joint.reference_frame()});
+  for (const Joint& joint : joints_) out.joints.push_back({joint.kind(), joint.params(), joint.reference_frame()});
   return out;
 }
 
@@ -195,8 +210,17 @@ void RodLinkage::restore(const LinkageState& state) {
     rods_[s].restore(seg.nodes, seg.thetas, seg.source_frames, seg.twist_hints);
   }
   for (size_t j = 0; j < joints_.size(); ++j) {
-    joints_[j].set_reference_frame(state.joints[j].reference_frame);
-    joints_[j].set_params(state.joints[j].params);
+    const JointState& js = state.joints[j];
+    Joint saved(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+                Eigen::Vector3d::UnitZ(), 1.0, 1.0, js.kind);
+    saved.set_reference_frame(js.reference_frame);
+    saved.set_params(js.params);
+    try {
+      joints_[j] = convert_joint(saved, options_.joint_kind);
+    } catch (const std::domain_error& e) {
+      throw std::invalid_argument("joint at vertex " + std::to_string(topology_.joints[j].vertex) + ": " +
+                                  e.what());
+    }
   }
   // Recompute the joint-controlled variables from the joints, with the
   // restored thetas as branch hints.

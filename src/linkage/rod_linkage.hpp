@@ -1,4 +1,4 @@
-// A rod linkage (seed sections 1-3 and 5): every graph edge is a segment, a
+// A rod linkage (seed sections 1-5): every graph edge is a segment, a
 // discrete elastic rod of n_s edges; the joints (valence 2-4 vertices) glue
 // segments into full rods and pin two rods together (joint.hpp).
 //
@@ -28,7 +28,9 @@
 //   for each segment in edge order: its free nodes (x, y, z of the first,
 //     then the next, ...: all nodes but the two of a terminal edge at a
 //     joint), then its free thetas (all but a joint's terminal edge);
-//   then for each joint in vertex order: p (3), omega (3), alpha, l_A, l_B.
+//   then for each joint in vertex order its 9 parameters: p (3), omega (3),
+//     alpha, l_A, l_B for rotation joints, p (3), e_A (3), e_B (3) for
+//     edge-vector joints (LinkageOptions::joint_kind, joint.hpp).
 // Energy = sum of the segments' energies; its gradient and Hessian follow by
 // the chain rule through the joints, including the second-derivative terms
 // of the joint-controlled node positions and thetas (seed 4.2 and 5).
@@ -50,6 +52,7 @@ enum class RestShape { Input, Straight };
 struct LinkageOptions {
   int subdivisions = 8;  // n_s, edges per segment (>= 3)
   RestShape rest_shape = RestShape::Input;
+  JointKind joint_kind = JointKind::Rotation;  // joint parametrization (joint.hpp)
   Material material;
 };
 
@@ -64,6 +67,7 @@ struct SegmentState {
   std::vector<double> twist_hints;
 };
 struct JointState {
+  JointKind kind = JointKind::Rotation;  // what params and reference_frame mean
   JointParams params = JointParams::Zero();
   Eigen::Matrix3d reference_frame = Eigen::Matrix3d::Identity();
 };
@@ -93,16 +97,25 @@ class RodLinkage {
   int reduced_index(int s, int full) const { return slots_[s][full] >= 0 ? slots_[s][full] : -1; }
   Eigen::VectorXd dofs() const;
   // Throws std::domain_error for a degenerate configuration (a terminal edge
-  // of zero length).
+  // of zero length, edge vectors of an edge-vector joint within
+  // kMinEdgeVectorAngleDegrees of parallel).
   void set_dofs(const Eigen::VectorXd& dofs);
 
   LinkageState state() const;
+  // Full variables of every segment in the input configuration (as built),
+  // the reference of the loads' potential; restores do not change it.
+  const std::vector<Eigen::VectorXd>& input_segment_dofs() const { return input_segment_dofs_; }
   // Throws std::invalid_argument when the state does not fit this linkage.
+  // Joints saved in the other parametrization are converted
+  // (edge_vector_conversion.hpp).
   void restore(const LinkageState& state);
 
   // Re-expressions of the unknowns that move nothing (see the solvers).
   void update_source_frames();
   void fold_joints();
+  // Re-expresses joint j around its current geometry
+  // (Joint::align_reference_frame): edge-vector joints get c_X = (l_X, 0, 0).
+  void align_joint(int j) { joints_[j].align_reference_frame(); }
 
   // Elastic energy.
   RodEnergy energy() const;
@@ -148,6 +161,7 @@ class RodLinkage {
   // Per segment and full variable: reduced index (>= 0), or -1 - (7 side + k)
   // for the k-th terminal value of the joint at that side.
   std::vector<std::vector<int>> slots_;
+  std::vector<Eigen::VectorXd> input_segment_dofs_;
 };
 
 }  // namespace xshell

@@ -8,7 +8,11 @@
 // and second derivatives give the rows of J and the second term. Each
 // segment is handled as a small dense problem over its local unknowns (its
 // free ones and the parameters of the joints at its ends) and scattered into
-// the global sparse matrix; the set of entries never changes.
+// the global sparse matrix; the set of entries never changes. These are the
+// plain, one-off forms; the statics problem assembles through
+// LinkageAssembly (linkage_assembly.hpp), which computes the same sums with
+// a precomputed pattern, in parallel.
+#include "linkage_assembly.hpp"
 #include "rod_linkage.hpp"
 
 namespace xshell {
@@ -34,9 +38,13 @@ RodLinkage::LocalMap RodLinkage::local_map(int s, bool with_hessians) const {
     const int edge = side == 0 ? 0 : rod.num_edges() - 1;
     Eigen::Matrix<double, 7, 9> jac;
     JointHessian scratch[7];
-    joints_[seg.joint[side]].terminal_edge_derivatives(seg.label[side], seg.sign[side],
-                                                       rod.source_frames()[edge], rod.thetas()[edge], jac,
-                                                       scratch);
+    if (with_hessians)
+      joints_[seg.joint[side]].terminal_edge_derivatives(seg.label[side], seg.sign[side],
+                                                         rod.source_frames()[edge], rod.thetas()[edge], jac,
+                                                         scratch);
+    else
+      terminal_edge_jacobian(joints_[seg.joint[side]], seg.label[side], seg.sign[side], rod.source_frames()[edge],
+                             rod.thetas()[edge], jac);
     for (int k = 0; k < rod.num_dofs(); ++k) {
       if (slot[k] >= 0) continue;
       const int code = -1 - slot[k];

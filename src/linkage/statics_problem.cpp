@@ -65,6 +65,17 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
     for (SupportDof dof : support.fix) {
       if (j >= 0) {
         const int o = l.joint_dof_offset(j);
+        if (l.joint(j).kind() == JointKind::EdgeVectors && dof == SupportDof::Orientation) {
+          // The seed's constrained joint: directions fixed, lengths free.
+          linkage_.align_joint(j);
+          for (int base : {kEdgeA, kEdgeB})
+            for (int c = 1; c < 3; ++c) fix(o + base + c);
+          continue;
+        }
+        if (l.joint(j).kind() == JointKind::EdgeVectors && dof == SupportDof::OpeningAngle)
+          throw ModelError("support at " + vertex_name(support.vertex) +
+                           ": edge-vector joints have no opening-angle unknown; fix \"orientation\" (both rod "
+                           "directions, hence the angle too) or use rotation joints");
         switch (dof) {
           case SupportDof::Position: for (int c = 0; c < 3; ++c) fix(o + kPosition + c); break;
           case SupportDof::X: fix(o + kPosition); break;
@@ -75,7 +86,10 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
         }
         continue;
       }
-      const auto [s, at_start] = l.free_end(support.vertex);
+      // (Named variables, not a structured binding: lambdas capture them.)
+      const std::pair<int, bool> end_of = l.free_end(support.vertex);
+      const int s = end_of.first;
+      const bool at_start = end_of.second;
       const ElasticRod& rod = l.segment(s);
       const int end = at_start ? 0 : rod.num_edges();
       const int next = at_start ? 1 : rod.num_edges() - 1;
@@ -120,7 +134,6 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
     Eigen::VectorXd f = Eigen::VectorXd::Zero(rod.num_dofs());
     for (int n = 0; n < rod.num_nodes(); ++n) f.segment<3>(3 * n) = mass[3 * n] * setup.gravity;
     segment_forces_.push_back(f);
-    segment_input_.push_back(rod.dofs());
   }
   for (const PointLoad& load : setup.forces) {
     check_vertex(load.vertex, "a force");
@@ -133,7 +146,11 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
       segment_forces_[s].segment<3>(3 * end) += load.force;
     }
   }
-  input_dofs_ = l.dofs();
+  // Point forces act on joint positions, which the input fixes: the
+  // graph's vertices.
+  input_dofs_ = Eigen::VectorXd::Zero(l.num_dofs());
+  for (int j = 0; j < l.num_joints(); ++j)
+    input_dofs_.segment<3>(l.joint_dof_offset(j) + kPosition) = l.graph().vertices[l.topology().joints[j].vertex];
 }
 
 Eigen::VectorXd LinkageProblem::free_dofs() const {
@@ -153,28 +170,24 @@ EnergyReport LinkageProblem::energy() const {
   const RodEnergy e = linkage_.energy();
   EnergyReport report{e.stretching, e.bending, e.twisting, 0.0};
   for (int s = 0; s < linkage_.num_segments(); ++s)
-    report.external -= segment_forces_[s].dot(linkage_.segment(s).dofs() - segment_input_[s]);
+    report.external -= segment_forces_[s].dot(linkage_.segment(s).dofs() - linkage_.input_segment_dofs()[s]);
   report.external -= point_forces_.dot(linkage_.dofs() - input_dofs_);
   return report;
 }
 
 Eigen::VectorXd LinkageProblem::free_gradient() const {
-  const Eigen::VectorXd g = linkage_.gradient(&segment_forces_) - point_forces_;
+  if (!assembly_.matches(linkage_, free_position_)) assembly_ = LinkageAssembly(linkage_, free_position_);
+  Eigen::VectorXd g;
+  assembly_.gradient(linkage_, &segment_forces_, g);
+  g -= point_forces_;
   Eigen::VectorXd out(free_.size());
   for (size_t i = 0; i < free_.size(); ++i) out[i] = g[free_[i]];
   return out;
 }
 
 const Eigen::SparseMatrix<double>& LinkageProblem::free_hessian() {
-  std::vector<Eigen::Triplet<double>> all, kept;
-  linkage_.hessian_triplets(all, &segment_forces_);
-  kept.reserve(all.size());
-  for (const auto& t : all) {
-    const int r = free_position_[t.row()], c = free_position_[t.col()];
-    if (r >= 0 && c >= 0) kept.emplace_back(r, c, t.value());
-  }
-  hessian_.resize(num_free(), num_free());
-  hessian_.setFromTriplets(kept.begin(), kept.end());
+  if (!assembly_.matches(linkage_, free_position_)) assembly_ = LinkageAssembly(linkage_, free_position_);
+  assembly_.hessian(linkage_, &segment_forces_, hessian_);
   return hessian_;
 }
 
@@ -189,6 +202,8 @@ Eigen::VectorXd LinkageProblem::gradient_weights() const {
     }
   }
   for (int j = 0; j < linkage_.num_joints(); ++j) {
+    // Edge-vector joints: p and both edge vectors are positions (forces).
+    if (linkage_.joint(j).kind() != JointKind::Rotation) continue;
     const int o = linkage_.joint_dof_offset(j);
     for (int c = 0; c < 4; ++c) w_all[o + kOmega + c] = moment;  // omega (3) and alpha
   }
@@ -227,7 +242,9 @@ void LinkageProblem::rebase(Eigen::VectorXd* free_velocity) {
   }
   std::vector<Eigen::Matrix3d> jacobians;
   for (int j = 0; j < linkage_.num_joints(); ++j)
-    jacobians.push_back(left_jacobian(linkage_.joint(j).params().segment<3>(kOmega)));
+    jacobians.push_back(linkage_.joint(j).kind() == JointKind::Rotation
+                            ? left_jacobian(linkage_.joint(j).params().segment<3>(kOmega))
+                            : Eigen::Matrix3d::Identity());
   linkage_.update_source_frames();
   linkage_.fold_joints();
   for (int s = 0; s < linkage_.num_segments(); ++s) {
@@ -240,6 +257,7 @@ void LinkageProblem::rebase(Eigen::VectorXd* free_velocity) {
     }
   }
   for (int j = 0; j < linkage_.num_joints(); ++j) {
+    if (linkage_.joint(j).kind() != JointKind::Rotation) continue;  // nothing folded
     const int o = linkage_.joint_dof_offset(j) + kOmega;
     v.segment<3>(o) = jacobians[j] * v.segment<3>(o);
   }

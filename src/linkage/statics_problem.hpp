@@ -2,14 +2,20 @@
 // which dead loads act, and the free unknowns the solvers move.
 //
 // Supports act on graph vertices. At a joint: "position" fixes p (or one
-// component for a roller), "orientation" fixes omega (the joint's bisector
-// frame and normal; the opening angle stays free), "opening_angle" fixes
-// alpha. At a free rod end: "position" fixes the end node (or components),
+// component for a roller). Rotation joints: "orientation" fixes omega (the
+// joint's bisector frame and normal; the opening angle stays free),
+// "opening_angle" fixes alpha. Edge-vector joints: "orientation" makes the
+// joint the seed's constrained joint (section 3): the joint is re-expressed
+// around its current directions (Joint::align_reference_frame, c_X =
+// (l_X, 0, 0)) and the deviations c_A[1..2], c_B[1..2] are fixed, so both
+// directions (hence also the normal and the opening angle) are held and
+// only the two lengths stay free; "opening_angle" is refused (no such
+// unknown). At a free rod end: "position" fixes the end node (or components),
 // "orientation" clamps the end: it also fixes the next node and the end
 // edge's theta (direction, length and twist of the end edge). Without any
 // support, the joint nearest the bounding-box centre (ties: lowest index) has
 // its position and orientation fixed, which removes exactly the rigid
-// motions.
+// motions (for an edge-vector joint, also that joint's opening).
 //
 // Loads: gravity g acts on lumped node masses (density x area x the node's
 // share of rest length, terminal edges at joints counted half by each of
@@ -19,8 +25,8 @@
 //
 // Convergence measure: with L the diagonal of the input's bounding box,
 // EI_max the larger bending stiffness and F_c = EI_max / L^2, the gradient's
-// force components (positions, lengths) divided by F_c and its moment
-// components (thetas, omega, alpha) by L F_c; the solve has converged when
+// force components (positions, lengths, edge vectors) divided by F_c and its
+// moment components (thetas, omega, alpha) by L F_c; the solve has converged when
 // the largest is at most the dimensionless gradient tolerance. That measure
 // is the same in any unit system.
 #pragma once
@@ -30,6 +36,7 @@
 #include <optional>
 #include <vector>
 
+#include "linkage_assembly.hpp"
 #include "rod_linkage.hpp"
 
 namespace xshell {
@@ -85,8 +92,9 @@ class LinkageProblem {
   // none, so that they stay positive).
   Eigen::VectorXd free_mass() const;
 
-  // Updates the rods' source frames and folds the joints; when given, the
-  // free velocity is carried over so that it describes the same motion.
+  // Updates the rods' source frames and folds the (rotation) joints; when
+  // given, the free velocity is carried over so that it describes the same
+  // motion.
   void rebase(Eigen::VectorXd* free_velocity = nullptr);
 
   double length_scale() const { return length_scale_; }
@@ -105,11 +113,13 @@ class LinkageProblem {
   std::vector<int> free_;
   int default_support_ = -1;
   std::vector<Eigen::VectorXd> segment_forces_;  // dead loads on full variables
-  std::vector<Eigen::VectorXd> segment_input_;   // full variables at the input
   Eigen::VectorXd point_forces_;                 // on reduced unknowns
-  Eigen::VectorXd input_dofs_;
+  Eigen::VectorXd input_dofs_;  // joint positions at the input (the rest is unused)
   double length_scale_ = 1.0, force_scale_ = 1.0;
   Eigen::SparseMatrix<double> hessian_;
+  // Pattern, value slots and work space of free_gradient() / free_hessian(),
+  // built at their first call (and again if the free unknowns change).
+  mutable LinkageAssembly assembly_;
   std::vector<int> free_position_;  // reduced index -> free index or -1
 };
 

@@ -29,6 +29,12 @@ struct Dual {
   Dual() = default;
   Dual(double value) : v(value) {}  // NOLINT: constants mix freely with duals
 
+ private:
+  // Results that every operation overwrites entirely skip the zero fill.
+  struct Uninitialized {};
+  explicit Dual(Uninitialized) : g(), h() {}
+
+ public:
   // The i-th seed variable with the given value.
   static Dual variable(int i, double value) {
     Dual d(value);
@@ -47,12 +53,12 @@ struct Dual {
   friend Dual operator+(Dual a, const Dual& b) { return a += b; }
   friend Dual operator-(Dual a, const Dual& b) { return a -= b; }
   friend Dual operator*(const Dual& a, const Dual& b) {
-    Dual r;
+    Dual r(Uninitialized{});
     r.v = a.v * b.v;
     r.g = a.v * b.g + b.v * a.g;
-    r.h = a.v * b.h + b.v * a.h;
-    r.h.noalias() += a.g * b.g.transpose();
-    r.h.noalias() += b.g * a.g.transpose();
+    // One pass over the Hessian (rather than four), column by column.
+    for (int j = 0; j < N; ++j)
+      r.h.col(j) = a.v * b.h.col(j) + b.v * a.h.col(j) + b.g[j] * a.g + a.g[j] * b.g;
     return r;
   }
   friend Dual operator/(const Dual& a, const Dual& b) { return a * reciprocal(b); }
@@ -71,11 +77,10 @@ struct Dual {
 
   // Applies a scalar function given its value and first two derivatives at v.
   friend Dual chain(const Dual& a, double f, double df, double d2f) {
-    Dual r;
+    Dual r(Uninitialized{});
     r.v = f;
     r.g = df * a.g;
-    r.h = df * a.h;
-    r.h.noalias() += d2f * (a.g * a.g.transpose());
+    for (int j = 0; j < N; ++j) r.h.col(j) = df * a.h.col(j) + (d2f * a.g[j]) * a.g;
     return r;
   }
   friend Dual reciprocal(const Dual& a) {

@@ -189,6 +189,11 @@ void ElasticRod::energy_per_element(std::vector<double>& stretching, std::vector
 
 Eigen::VectorXd ElasticRod::gradient() const {
   Eigen::VectorXd g = Eigen::VectorXd::Zero(num_dofs());
+  add_gradient(g);
+  return g;
+}
+
+void ElasticRod::add_gradient(Eigen::Ref<Eigen::VectorXd> g) const {
   for (int j = 0; j < num_edges(); ++j) {
     const Eigen::Vector3d ge =
         stretching_gradient(edge(j), rest_length_[j], stiffness_.stretching * stretching_share_[j]);
@@ -196,14 +201,54 @@ Eigen::VectorXd ElasticRod::gradient() const {
     g.segment<3>(node_dof(j + 1)) += ge;
   }
   VertexGradient gv;
-  VertexHessian hv;
   for (int i = 1; i < num_edges(); ++i) {
-    vertex_energy_derivatives(stencil_dofs(i), stencil(i), gv, hv);
+    vertex_energy_gradient(stencil_dofs(i), stencil(i), gv);
     g.segment<9>(node_dof(i - 1)) += gv.head<9>();
     g[theta_dof(i - 1)] += gv[9];
     g[theta_dof(i)] += gv[10];
   }
-  return g;
+}
+
+void ElasticRod::add_gradient_and_hessian(Eigen::Ref<Eigen::VectorXd> g, Eigen::Ref<Eigen::MatrixXd> hessian) const {
+  for (int j = 0; j < num_edges(); ++j) {
+    const double k = stiffness_.stretching * stretching_share_[j];
+    const Eigen::Vector3d e = edge(j);
+    const Eigen::Vector3d ge = stretching_gradient(e, rest_length_[j], k);
+    g.segment<3>(node_dof(j)) -= ge;
+    g.segment<3>(node_dof(j + 1)) += ge;
+    const Eigen::Matrix3d h = stretching_hessian(e, rest_length_[j], k);
+    const int a = node_dof(j), b = node_dof(j + 1);
+    hessian.block<3, 3>(a, a) += h;
+    hessian.block<3, 3>(b, b) += h;
+    hessian.block<3, 3>(a, b) -= h;
+    hessian.block<3, 3>(b, a) -= h;
+  }
+  VertexGradient gv;
+  VertexHessian hv;
+  for (int i = 1; i < num_edges(); ++i) {
+    vertex_energy_hessian(stencil_dofs(i), stencil(i), gv, hv);
+    const int x = node_dof(i - 1), t0 = theta_dof(i - 1);
+    g.segment<9>(x) += gv.head<9>();
+    g.segment<2>(t0) += gv.tail<2>();
+    hessian.block<9, 9>(x, x) += hv.block<9, 9>(0, 0);
+    hessian.block<9, 2>(x, t0) += hv.block<9, 2>(0, 9);
+    hessian.block<2, 9>(t0, x) += hv.block<2, 9>(9, 0);
+    hessian.block<2, 2>(t0, t0) += hv.block<2, 2>(9, 9);
+  }
+}
+
+Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> ElasticRod::hessian_pattern() const {
+  Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> p =
+      Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>::Constant(num_dofs(), num_dofs(), false);
+  for (int j = 0; j < num_edges(); ++j) p.block<6, 6>(node_dof(j), node_dof(j)).setConstant(true);
+  for (int i = 1; i < num_edges(); ++i) {
+    const int x = node_dof(i - 1), t0 = theta_dof(i - 1);
+    p.block<9, 9>(x, x).setConstant(true);
+    p.block<9, 2>(x, t0).setConstant(true);
+    p.block<2, 9>(t0, x).setConstant(true);
+    p.block<2, 2>(t0, t0).setConstant(true);
+  }
+  return p;
 }
 
 void ElasticRod::hessian_triplets(std::vector<Eigen::Triplet<double>>& triplets, int offset) const {
@@ -222,7 +267,7 @@ void ElasticRod::hessian_triplets(std::vector<Eigen::Triplet<double>>& triplets,
   VertexGradient gv;
   VertexHessian hv;
   for (int i = 1; i < num_edges(); ++i) {
-    vertex_energy_derivatives(stencil_dofs(i), stencil(i), gv, hv);
+    vertex_energy_hessian(stencil_dofs(i), stencil(i), gv, hv);
     int index[11];
     for (int k = 0; k < 9; ++k) index[k] = offset + node_dof(i - 1) + k;
     index[9] = offset + theta_dof(i - 1);
@@ -233,25 +278,8 @@ void ElasticRod::hessian_triplets(std::vector<Eigen::Triplet<double>>& triplets,
 }
 
 void ElasticRod::add_hessian(Eigen::MatrixXd& hessian) const {
-  for (int j = 0; j < num_edges(); ++j) {
-    const Eigen::Matrix3d h =
-        stretching_hessian(edge(j), rest_length_[j], stiffness_.stretching * stretching_share_[j]);
-    const int a = node_dof(j), b = node_dof(j + 1);
-    hessian.block<3, 3>(a, a) += h;
-    hessian.block<3, 3>(b, b) += h;
-    hessian.block<3, 3>(a, b) -= h;
-    hessian.block<3, 3>(b, a) -= h;
-  }
-  VertexGradient gv;
-  VertexHessian hv;
-  for (int i = 1; i < num_edges(); ++i) {
-    vertex_energy_derivatives(stencil_dofs(i), stencil(i), gv, hv);
-    const int x = node_dof(i - 1), t0 = theta_dof(i - 1);
-    hessian.block<9, 9>(x, x) += hv.block<9, 9>(0, 0);
-    hessian.block<9, 2>(x, t0) += hv.block<9, 2>(0, 9);
-    hessian.block<2, 9>(t0, x) += hv.block<2, 9>(9, 0);
-    hessian.block<2, 2>(t0, t0) += hv.block<2, 2>(9, 9);
-  }
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(num_dofs());
+  add_gradient_and_hessian(g, hessian);
 }
 
 Eigen::VectorXd ElasticRod::lumped_mass(bool unit_density) const {

@@ -106,6 +106,14 @@ class ElasticRod {
   Eigen::SparseMatrix<double> hessian() const;
   // Adds the Hessian to a dense num_dofs() square matrix.
   void add_hessian(Eigen::MatrixXd& hessian) const;
+  // Adds the gradient to g (num_dofs()); allocates nothing.
+  void add_gradient(Eigen::Ref<Eigen::VectorXd> g) const;
+  // Adds the gradient to g (num_dofs()) and the Hessian to h (dense,
+  // num_dofs() square) in one pass over the stencils; allocates nothing.
+  void add_gradient_and_hessian(Eigen::Ref<Eigen::VectorXd> g, Eigen::Ref<Eigen::MatrixXd> h) const;
+  // Structure of the Hessian: true where some stencil can make an entry
+  // nonzero (num_dofs() square, symmetric). Depends on num_edges() only.
+  Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> hessian_pattern() const;
 
   // Lumped masses of the full variables (num_dofs()): each edge's mass
   // (mass per length x rest length x share) split between its two nodes,

@@ -1,0 +1,134 @@
+// Assembly of a rod linkage's gradient and Hessian into global vectors and
+// a sparse matrix of fixed pattern: the one place where local derivatives
+// become global ones (the chain rule itself is in rod_linkage_derivatives.cpp).
+//
+// Per segment s, with v its full variables (rod nodes and thetas) and r_s
+// its local unknowns (its free ones, then the 9 parameters of the joint at
+// each end), the chain rule of seed section 4.2 is
+//   g_s = J^T dE/dv,  H_s = J^T (d2E/dv2) J + sum_k (dE/dv_k) d2v_k/dr_s^2,
+// where J is the identity on free variables and a 7 x 9 joint Jacobian on
+// each joint's terminal edge (two nodes and a theta). The rod Hessian is a
+// band (stencils of 11 variables), so J^T H J is formed block by block, not
+// as a dense product.
+//
+// What never changes is computed once, at construction: the pattern of the
+// free Hessian (both triangles; only entries some stencil or joint can make
+// nonzero, fixed unknowns dropped), and for every local entry the value slot
+// it adds to. Each evaluation then
+//   1. computes every segment's local gradient / Hessian in parallel
+//      (OpenMP, dynamic schedule, per-thread scratch: no allocation), writing
+//      each one into its own range of a contribution buffer, and
+//   2. sums the contributions of every global entry in a fixed order (the
+//      segments' order), also in parallel.
+// So the result does not depend on the number of threads, bit for bit.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <array>
+#include <vector>
+
+#include "rod_linkage.hpp"
+
+namespace xshell {
+
+// Jacobian (7 x 9) of a joint's terminal edge (joint.hpp) with respect to
+// its parameters, by first-order forward AD: what gradients need, without
+// the 7 Hessians of Joint::terminal_edge_derivatives.
+void terminal_edge_jacobian(const Joint& joint, int label, int sign, const SourceFrame& source,
+                            double theta_hint, Eigen::Matrix<double, 7, 9>& jacobian);
+
+// A joint's edge vectors and normal, v = (e_A, e_B, n), with their exact
+// first and second derivatives with respect to its parameters. For both
+// joint kinds they depend on parameters 3..8 only (omega, alpha, l_A, l_B or
+// e_A, e_B; never on the position p), so they are taken by second-order
+// forward AD of Joint::geometry over those 6, once per joint.
+struct JointGeometryDerivatives {
+  Eigen::Matrix<double, 9, 1> value;
+  Eigen::Matrix<double, 9, 6> jacobian;       // row k: d v_k / d params[3..8]
+  Eigen::Matrix<double, 6, 6> hessians[9];    // d2 v_k / d params[3..8]^2
+};
+void joint_geometry_derivatives(const Joint& joint, JointGeometryDerivatives& out);
+
+// Jacobian and Hessians of a terminal edge's 7 values (first node, second
+// node, theta) with respect to the joint's 9 parameters, as
+// Joint::terminal_edge_derivatives gives them, from the joint's geometry
+// derivatives. The nodes p -/+ sign e_X / 2 are linear in p and e_X. theta =
+// atan2(-n . d1_ref, n . d2_ref) of the edge e = sign e_X has, with
+// y = -n . d1_ref, x = n . d2_ref, t = e/|e| and kh the source curvature
+// binormal (vertex_stencil.hpp),
+//   dtheta/dn = -(x d1_ref + y d2_ref) / (x^2 + y^2),
+//   dtheta/de = (I - t t^T) [(n . t)(x d1_ref + y d2_ref) / (x^2 + y^2) + kh / 2] / |e|,
+// whose Jacobian (first-order AD over (e, n)) is its Hessian; both are
+// chained through the geometry. No value depends on p nonlinearly, so the
+// Hessians are stored over parameters 3..8 only.
+struct TerminalEdgeDerivatives {
+  Eigen::Matrix<double, 7, 9> jacobian;
+  Eigen::Matrix<double, 6, 6> hessians[7];  // over params[3..8]; zero elsewhere
+};
+void terminal_edge_derivatives(const JointGeometryDerivatives& geometry, int label, int sign,
+                               const SourceFrame& source, TerminalEdgeDerivatives& out);
+
+class LinkageAssembly {
+ public:
+  LinkageAssembly() = default;
+  // free_position: per reduced unknown of the linkage, its index among the
+  // free unknowns, or -1 when it is fixed (its Hessian rows and columns are
+  // dropped).
+  LinkageAssembly(const RodLinkage& linkage, const std::vector<int>& free_position);
+
+  // True when built for this linkage size and these free positions.
+  bool matches(const RodLinkage& linkage, const std::vector<int>& free_position) const;
+
+  // Gradient of E - sum_s forces_s . v_s with respect to all reduced
+  // unknowns (linkage.num_dofs()); forces: one vector per segment (its full
+  // variables) or null.
+  void gradient(const RodLinkage& linkage, const std::vector<Eigen::VectorXd>* forces, Eigen::VectorXd& out);
+  // Its Hessian restricted to the free unknowns (both triangles). `out` gets
+  // pattern() the first time (or when its pattern differs) and then only
+  // new values.
+  void hessian(const RodLinkage& linkage, const std::vector<Eigen::VectorXd>* forces,
+               Eigen::SparseMatrix<double>& out);
+  const Eigen::SparseMatrix<double>& pattern() const { return pattern_; }
+
+ private:
+  struct SegmentPlan {
+    std::vector<int> free_full;                  // full variable of each local free unknown
+    std::array<int, 2> joint_local{{-1, -1}};    // local offset of each end's joint block, or -1
+    std::array<std::array<int, 7>, 2> controlled{};  // full variable of each terminal value, per end
+    std::vector<int> global;                     // reduced index of each local unknown
+    std::vector<int> entries;                    // kept local Hessian entries (column-major index)
+    long hessian_begin = 0;                      // their range in the contribution buffer
+    long gradient_begin = 0;                     // local gradient's range in its buffer
+    int size() const { return static_cast<int>(global.size()); }
+  };
+  // Per-thread work space, sized once for the largest segment and viewed
+  // through maps of the right size.
+  struct Scratch {
+    std::vector<double> rod_gradient, rod_hessian, local_gradient, local_hessian, coupling;
+    Eigen::Matrix<double, 7, 9> jacobian[2];
+    TerminalEdgeDerivatives terminal[2];
+  };
+  // Local gradient (and Hessian) of segment s into scratch.
+  void local_derivatives(const RodLinkage& linkage, int s, const std::vector<Eigen::VectorXd>* forces,
+                         bool with_hessian, Scratch& scratch) const;
+  Scratch& scratch_for_thread();
+  void prepare_scratch();
+
+  int num_dofs_ = -1;
+  int max_rod_dofs_ = 0, max_local_ = 0;
+  std::vector<int> free_position_;
+  std::vector<SegmentPlan> plans_;
+  Eigen::SparseMatrix<double> pattern_;
+  // Gather lists: global entry k sums contributions sources[begin[k]..begin[k+1]).
+  std::vector<long> hessian_sources_begin_, hessian_sources_;
+  std::vector<long> gradient_sources_begin_, gradient_sources_;
+  std::vector<double> hessian_contributions_, gradient_contributions_;
+  std::vector<Scratch> scratch_;
+  std::vector<JointGeometryDerivatives> joint_geometry_;  // per joint, for the Hessian
+  // The matrix hessian() wrote last (its pattern is pattern_ unless changed since).
+  const Eigen::SparseMatrix<double>* last_output_ = nullptr;
+  const double* last_values_ = nullptr;
+};
+
+}  // namespace xshell

@@ -1,0 +1,174 @@
+// The statics problem's assembly (LinkageAssembly: fixed pattern, value
+// slots, parallel, deterministic) against the plain chain rule of
+// RodLinkage (dense J^T H J per segment, triplets), at random configurations
+// away from a source-frame update, with supports, gravity and point loads.
+#include <doctest/doctest.h>
+
+#include <random>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "finite_differences.hpp"
+#include "linkage/statics_problem.hpp"
+#include "linkage_fixtures.hpp"
+
+using namespace xshell;
+using namespace xshell::testing;
+
+namespace {
+
+StaticsSetup loads(bool supported) {
+  StaticsSetup setup;
+  setup.gravity = Eigen::Vector3d(0.2, -0.1, -7.0);
+  setup.forces = {{0, Eigen::Vector3d(0.1, 0.0, -0.3)}};
+  // Vertex 0 is a joint in every graph used here.
+  if (supported) setup.supports = {{0, {SupportDof::Orientation, SupportDof::OpeningAngle}}, {1, {SupportDof::Z}}};
+  return setup;
+}
+
+// The free Hessian from RodLinkage::hessian (dense local chain rule).
+Eigen::MatrixXd reference_free_hessian(const LinkageProblem& problem, const std::vector<Eigen::VectorXd>& forces) {
+  const Eigen::MatrixXd full(problem.linkage().hessian(&forces));
+  const std::vector<int>& free = problem.free_indices();
+  Eigen::MatrixXd h(free.size(), free.size());
+  for (size_t c = 0; c < free.size(); ++c)
+    for (size_t r = 0; r < free.size(); ++r) h(r, c) = full(free[r], free[c]);
+  return h;
+}
+
+// Gravity as the problem applies it, on the full variables of every segment.
+std::vector<Eigen::VectorXd> gravity_forces(const RodLinkage& linkage, const Eigen::Vector3d& gravity) {
+  std::vector<Eigen::VectorXd> f;
+  for (int s = 0; s < linkage.num_segments(); ++s) {
+    const ElasticRod& rod = linkage.segment(s);
+    const Eigen::VectorXd mass = rod.lumped_mass();
+    Eigen::VectorXd fs = Eigen::VectorXd::Zero(rod.num_dofs());
+    for (int n = 0; n < rod.num_nodes(); ++n) fs.segment<3>(3 * n) = mass[3 * n] * gravity;
+    f.push_back(fs);
+  }
+  return f;
+}
+
+}  // namespace
+
+TEST_CASE("Assembled free gradient and Hessian equal the plain chain rule, pattern included") {
+  std::mt19937 rng(17);
+  int compared = 0, cases = 0;
+  const LineGraph graphs[] = {single_x(), tee(), grid(3, 4, 0.4)};
+  for (const LineGraph& g : graphs) {
+    for (int subdivisions : {3, 5}) {
+      for (bool supported : {false, true}) {
+        CAPTURE(subdivisions);
+        CAPTURE(supported);
+        LinkageProblem problem(RodLinkage(g, test_options(RestShape::Straight, subdivisions)), loads(supported));
+        problem.set_free_dofs(problem.free_dofs() + random_vector(problem.num_free(), rng, 0.05));
+        problem.rebase();
+        // Away from the update too: the kernels are exact there.
+        problem.set_free_dofs(problem.free_dofs() + random_vector(problem.num_free(), rng, 0.05));
+        const StaticsSetup setup = loads(supported);
+        std::vector<Eigen::VectorXd> forces = gravity_forces(problem.linkage(), setup.gravity);
+        const Eigen::MatrixXd reference = reference_free_hessian(problem, forces);
+        const Eigen::SparseMatrix<double>& H = problem.free_hessian();
+        const Eigen::MatrixXd dense(H);
+        const double scale = reference.cwiseAbs().maxCoeff();
+        REQUIRE(scale > 0.0);
+        CHECK((dense - reference).cwiseAbs().maxCoeff() <= 1e-12 * scale);
+        CHECK((dense - dense.transpose()).cwiseAbs().maxCoeff() == 0.0);
+        // Every nonzero of the reference is inside the pattern.
+        int missing = 0;
+        for (Eigen::Index c = 0; c < reference.cols(); ++c)
+          for (Eigen::Index r = 0; r < reference.rows(); ++r)
+            if (reference(r, c) != 0.0 && H.coeff(r, c) == 0.0 && dense(r, c) == 0.0) ++missing;
+        CHECK(missing == 0);
+        CHECK(H.nonZeros() < reference.size());
+
+        // Gradient: the plain chain rule minus the point load (on vertex 0, a
+        // joint in these graphs), restricted to the free unknowns.
+        const Eigen::VectorXd g_free = problem.free_gradient();
+        Eigen::VectorXd g_full = problem.linkage().gradient(&forces);
+        const int joint = problem.linkage().topology().joint_of_vertex[0];
+        REQUIRE(joint >= 0);
+        g_full.segment<3>(problem.linkage().joint_dof_offset(joint) + kPosition) -= setup.forces[0].force;
+        Eigen::VectorXd g_ref(problem.num_free());
+        for (int i = 0; i < problem.num_free(); ++i) g_ref[i] = g_full[problem.free_indices()[i]];
+        CHECK((g_free - g_ref).cwiseAbs().maxCoeff() <= 1e-12 * g_ref.cwiseAbs().maxCoeff());
+        compared += static_cast<int>(reference.size() + g_ref.size());
+        ++cases;
+      }
+    }
+  }
+  CHECK(cases == 12);
+  CHECK(compared > 10000);
+}
+
+TEST_CASE("Terminal-edge derivatives from the joint's geometry equal AD over the joint's parameters") {
+  std::mt19937 rng(29);
+  int compared = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::Vector3d n = Eigen::Vector3d(random_vector(3, rng)).normalized();
+    const Eigen::Vector3d t_a = any_perpendicular(n);
+    const double alpha = 0.4 + 2.0 * std::abs(random_vector(1, rng)[0]);
+    const Eigen::Vector3d t_b = std::cos(alpha) * t_a + std::sin(alpha) * n.cross(t_a);
+    Joint joint(random_vector(3, rng), t_a, t_b, n, 0.7, 1.3);
+    JointParams p = joint.params();
+    p.segment<3>(kOmega) = random_vector(3, rng, 0.4);  // away from the fold too
+    joint.set_params(p);
+    JointGeometryDerivatives geometry;
+    joint_geometry_derivatives(joint, geometry);
+    for (int label = 0; label < 2; ++label)
+      for (int sign : {-1, 1}) {
+        const Eigen::Vector3d t = sign * joint.tangent(label);
+        const Eigen::Vector3d t_hat = (t + 0.3 * Eigen::Vector3d(random_vector(3, rng))).normalized();
+        const SourceFrame source{t_hat, Eigen::Vector3d(random_vector(3, rng)).cross(t_hat).normalized()};
+        const double hint = random_vector(1, rng, 3.0)[0];
+        Eigen::Matrix<double, 7, 9> j_ref, j_first;
+        JointHessian h_ref[7];
+        joint.terminal_edge_derivatives(label, sign, source, hint, j_ref, h_ref);
+        TerminalEdgeDerivatives fast;
+        terminal_edge_derivatives(geometry, label, sign, source, fast);
+        const Eigen::Matrix<double, 7, 9>& j_fast = fast.jacobian;
+        JointHessian h_fast[7];
+        for (int k = 0; k < 7; ++k) {
+          h_fast[k].setZero();
+          h_fast[k].block<6, 6>(3, 3) = fast.hessians[k];
+        }
+        terminal_edge_jacobian(joint, label, sign, source, hint, j_first);
+        const double jscale = j_ref.cwiseAbs().maxCoeff();
+        CHECK((j_fast - j_ref).cwiseAbs().maxCoeff() <= 1e-13 * jscale);
+        CHECK((j_first - j_ref).cwiseAbs().maxCoeff() <= 1e-13 * jscale);
+        for (int k = 0; k < 7; ++k) {
+          const double hscale = std::max(h_ref[k].cwiseAbs().maxCoeff(), 1e-300);
+          CHECK((h_fast[k] - h_ref[k]).cwiseAbs().maxCoeff() <= 1e-12 * std::max(hscale, 1e-3));
+          compared += 81;
+        }
+        compared += 2 * 63;
+      }
+  }
+  CHECK(compared == 20 * 4 * (7 * 81 + 2 * 63));
+}
+
+TEST_CASE("Assembly is deterministic: 1 and 2 threads give bit-identical results") {
+#ifdef _OPENMP
+  std::mt19937 rng(23);
+  LinkageProblem problem(RodLinkage(grid(4, 4, 0.3), test_options(RestShape::Straight, 5)), loads(false));
+  problem.set_free_dofs(problem.free_dofs() + random_vector(problem.num_free(), rng, 0.05));
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const Eigen::VectorXd g1 = problem.free_gradient();
+  const Eigen::SparseMatrix<double> h1 = problem.free_hessian();
+  omp_set_num_threads(2);
+  const Eigen::VectorXd g2 = problem.free_gradient();
+  const Eigen::SparseMatrix<double> h2 = problem.free_hessian();
+  omp_set_num_threads(before);
+  REQUIRE(h1.nonZeros() == h2.nonZeros());
+  CHECK(g1 == g2);
+  int equal = 0;
+  for (Eigen::Index k = 0; k < h1.nonZeros(); ++k) equal += h1.valuePtr()[k] == h2.valuePtr()[k];
+  CHECK(equal == h1.nonZeros());
+  CHECK(equal > 1000);
+#else
+  MESSAGE("built without OpenMP: nothing to compare");
+#endif
+}
