@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "deploy_run.hpp"
 #include "exit_status.hpp"
 #include "integrators/dynamics.hpp"
 #include "integrators/linkage_objective.hpp"
@@ -38,12 +39,8 @@ SolverMethod parse_method(const std::string& name) {
 // Features the configuration can name but this version does not run yet:
 // refuse them clearly rather than ignore them.
 void check_available(const Config& config) {
-  if (config.joints == JointModel::EdgeVectors)
-    throw InputError(config.source + ": joints: \"edge_vectors\" joints are not available in this version; use \"rotation\"");
   if (config.solver.method == SolverMethod::KineticDamping)
     throw InputError(config.source + ": solver.method: \"kinetic-damping\" is not available in this version; use \"newton\" or \"dynamics\"");
-  if (config.deployment)
-    throw InputError(config.source + ": deployment: deployment is not available in this version");
 }
 
 const char* method_name(SolverMethod m) { return m == SolverMethod::Newton ? "newton" : "dynamics"; }
@@ -133,6 +130,7 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
   Config config;
   std::optional<LinkageProblem> problem;
   ProblemSetup setup;
+  int default_support = -1;  // the vertex pinned by default, or -1
   try {
     config = read_config(args.config);
     if (args.solver) config.solver.method = parse_method(*args.solver);
@@ -143,6 +141,8 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
     RodLinkage linkage(setup.graph, setup.options);
     if (args.init) read_state(*args.init, linkage, setup.origin);
     problem.emplace(std::move(linkage), setup.statics);
+    default_support = problem->default_support_vertex();
+    prepare_deployment(config, problem, setup.statics);  // no-op without "deployment"
   } catch (const InputError& e) {
     std::cerr << "xshell: error: " << e.what() << "\n";
     return kExitInvalidInput;
@@ -159,9 +159,9 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
     std::cerr << "xshell: error: cannot write the output directory: " << e.what() << "\n";
     return kExitOutputFailed;
   }
-  if (problem->default_support_vertex() >= 0)
+  if (default_support >= 0)
     std::cerr << "xshell: no supports given: pinning position and orientation of vertex "
-              << problem->default_support_vertex() << " (the joint nearest the centre)\n";
+              << default_support << " (the joint nearest the centre)\n";
 
   const bool progress = progress_enabled(args, config);
   RunSummary summary;
@@ -169,7 +169,7 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
   summary.unknowns = problem->linkage().num_dofs();
   summary.free_unknowns = problem->num_free();
   summary.gradient_tolerance = config.solver.gradient_tolerance;
-  if (problem->default_support_vertex() >= 0) summary.default_support = problem->default_support_vertex();
+  if (default_support >= 0) summary.default_support = default_support;
   summary.configuration = to_json(config);
   summary.version = XSHELL_VERSION;
 
@@ -178,11 +178,23 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
   auto poll = [&] {
     if (stop.load() || outputs->failed()) halt = true;
   };
-  outputs->step(0.0, true);
+  if (!config.deployment) outputs->step(0.0, true);  // a deployment writes its step 0 in equilibrium
 
   LinkageObjective objective(*problem);
   bool interrupted = false;
-  if (config.solver.method == SolverMethod::Newton) {
+  std::string deployment_error;
+  if (config.deployment) {
+    DeploymentHooks hooks;
+    hooks.snapshot = [&](double time, bool force) { outputs->step(time, force); };
+    hooks.halted = [&] {
+      poll();
+      return halt.load();
+    };
+    hooks.progress = progress;
+    const DeploymentRun run = run_deployment(config, *problem, dir, hooks, summary);
+    interrupted = run.interrupted;
+    deployment_error = run.output_error;
+  } else if (config.solver.method == SolverMethod::Newton) {
     NewtonOptions options;
     options.gradient_tolerance = config.solver.gradient_tolerance;
     options.max_iterations = config.solver.max_iterations;
@@ -254,6 +266,10 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
   outputs->finish(summary);
   if (outputs->failed()) {
     std::cerr << "xshell: error: " << outputs->error() << "\n";
+    return kExitOutputFailed;
+  }
+  if (!deployment_error.empty()) {
+    std::cerr << "xshell: error: " << deployment_error << "\n";
     return kExitOutputFailed;
   }
   (void)failed_before_finish;

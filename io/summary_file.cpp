@@ -42,6 +42,20 @@ nlohmann::json to_json(const RunSummary& s) {
               {"history", history},
               {"configuration", s.configuration},
               {"version", s.version}};
+  if (const auto& d = s.deployment) {
+    out["deployment"] = {{"actuation", d->actuation},
+                         {"status", d->status},
+                         {"steps", d->steps},
+                         {"failed_attempts", d->failed_attempts},
+                         {"iterations", d->iterations},
+                         {"start_average_angle", d->start_average_angle},
+                         {"target_average_angle",
+                          d->target_average_angle ? json(*d->target_average_angle) : json(nullptr)},
+                         {"final_average_angle", d->final_average_angle},
+                         {"final_torque", d->final_torque},
+                         {"table", d->table},
+                         {"plot", d->plot ? json(*d->plot) : json(nullptr)}};
+  }
   return out;
 }
 

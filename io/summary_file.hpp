@@ -2,7 +2,8 @@
 //
 // Fields (units are those of the configuration):
 //   status            "converged" | "max_iterations" | "linear_solver_failed" |
-//                     "line_search_failed" | "integrator_failed" | "non_finite" | "interrupted"
+//                     "line_search_failed" | "integrator_failed" | "non_finite" | "interrupted" |
+//                     "step_failed" (a deployment step failed even with halved increments)
 //   reason            one line
 //   converged, stable, interrupted   booleans; stable: an LL^T factorization of the free
 //                     Hessian succeeded at the final state (a saddle is never stable)
@@ -21,6 +22,13 @@
 //   default_support   the vertex pinned when no support was given, else null
 //   history           per iteration/step: {iteration, time, energy, gradient_norm, step,
 //                     kinetic_energy, seconds}
+//   deployment        only for a run with a "deployment": {actuation ("average_opening_angle" |
+//                     "joint_angles"), status ("completed" | "step_failed" | "interrupted"),
+//                     steps (accepted steps after step 0, the start), failed_attempts (steps
+//                     retried with half the increment), iterations (solver iterations or time
+//                     steps, all steps), start_average_angle, target_average_angle (null for
+//                     joint_angles), final_average_angle (radians), final_torque (dE/dA, energy
+//                     per radian), table ("deployment.csv"), plot ("deployment.png" or null)}
 //   configuration     the resolved configuration; version: the program's version
 #pragma once
 
@@ -44,6 +52,21 @@ struct IterationRecord {
   double seconds = 0.0;
 };
 
+// The "deployment" object (see above).
+struct DeploymentSummary {
+  std::string actuation;  // "average_opening_angle" | "joint_angles"
+  std::string status;     // "completed" | "step_failed" | "interrupted"
+  int steps = 0;
+  int failed_attempts = 0;
+  long iterations = 0;
+  double start_average_angle = 0.0;
+  std::optional<double> target_average_angle;
+  double final_average_angle = 0.0;
+  double final_torque = 0.0;
+  std::string table = "deployment.csv";
+  std::optional<std::string> plot;
+};
+
 struct RunSummary {
   std::string status;
   std::string reason;
@@ -59,6 +82,7 @@ struct RunSummary {
   std::vector<std::optional<double>> opening_angles;
   std::optional<int> default_support;
   std::vector<IterationRecord> history;
+  std::optional<DeploymentSummary> deployment;  // runs with a "deployment" only
   nlohmann::json configuration;
   std::string version;
 };

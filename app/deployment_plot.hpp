@@ -1,0 +1,22 @@
+// deployment.png: energy and torque of a deployment against the average
+// opening angle, drawn from deployment.csv by a small matplotlib script
+// (embedded here, fed to python3 on its standard input). Optional: when no
+// python3 with matplotlib is found (Debian: python3-matplotlib), the plot
+// is skipped with a message.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace xshell {
+
+struct PlotOutcome {
+  bool written = false;
+  std::string message;  // why not, when not written
+};
+
+// Draws `csv` (the deployment table) into `png`, atomically (a temporary
+// name in the same directory, then renamed).
+PlotOutcome plot_deployment(const std::filesystem::path& csv, const std::filesystem::path& png);
+
+}  // namespace xshell

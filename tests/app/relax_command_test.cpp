@@ -1,0 +1,157 @@
+#include <doctest/doctest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <unistd.h>
+
+#include <thread>
+
+#include "command_runner.hpp"
+
+using namespace xshell::testing;
+
+extern char** environ;
+
+TEST_CASE("relax: the sample runs and writes summary.json, state.json and the VTK series") {
+  const fs::path dir = temporary_directory("sample");
+  write_text(dir / "run.json", sample_config(dir / "out"));
+  const CommandResult r = run_xshell("relax run.json", dir);
+  CAPTURE(r.errors);
+  REQUIRE(r.status == 0);
+  const nlohmann::json s = read_json(dir / "out" / "summary.json");
+  CHECK(s["converged"] == true);
+  CHECK(s["stable"] == true);
+  CHECK(s["status"] == "converged");
+  CHECK(s["solver"] == "newton");
+  CHECK(s["iterations"].get<int>() > 0);
+  CHECK(s["wall_seconds"].get<double>() > 0.0);
+  CHECK(s["unknowns"].get<int>() > s["free_unknowns"].get<int>());
+  CHECK(s["gradient_norm"].get<double>() <= s["gradient_tolerance"].get<double>());
+  for (const char* key : {"total", "stretching", "bending", "twisting", "external"}) CHECK(s["energy"].contains(key));
+  CHECK(s["energy"]["total"].get<double>() ==
+        doctest::Approx(s["energy"]["stretching"].get<double>() + s["energy"]["bending"].get<double>() +
+                        s["energy"]["twisting"].get<double>() + s["energy"]["external"].get<double>()));
+  CHECK(s["vertices"].size() == 32);
+  CHECK(s["opening_angles"].size() == 32);
+  CHECK(s["opening_angles"][0].is_null());          // a free end
+  CHECK(s["opening_angles"][1].get<double>() > 0);  // a joint
+  CHECK(s["default_support"].is_null());
+  CHECK(s["configuration"]["subdivisions"] == 6);
+  CHECK(s["version"].is_string());
+  CHECK(read_json(dir / "out" / "state.json")["format"] == "xshell-state");
+  CHECK(fs::exists(dir / "out" / "series.pvd"));
+  CHECK(fs::exists(dir / "out" / "rods_000000.vtp"));
+  // The supported corners did not move; the loaded middle sagged.
+  CHECK(s["vertices"][1][2].get<double>() == doctest::Approx(0.0).epsilon(1e-12));
+  CHECK(s["vertices"][13][2].get<double>() < -1e-3);
+}
+
+TEST_CASE("relax --init from a written state reproduces it without iterating") {
+  const fs::path dir = temporary_directory("init");
+  write_text(dir / "run.json", sample_config(dir / "first"));
+  REQUIRE(run_xshell("relax run.json", dir).status == 0);
+  const CommandResult r = run_xshell("relax run.json --init first/state.json --out second", dir);
+  CAPTURE(r.errors);
+  REQUIRE(r.status == 0);
+  const nlohmann::json a = read_json(dir / "first" / "summary.json"), b = read_json(dir / "second" / "summary.json");
+  CHECK(b["iterations"] == 0);
+  CHECK(b["energy"]["total"].get<double>() == doctest::Approx(a["energy"]["total"].get<double>()).epsilon(1e-12));
+  int compared = 0;
+  for (size_t v = 0; v < a["vertices"].size(); ++v)
+    for (int c = 0; c < 3; ++c) {
+      CHECK(std::abs(a["vertices"][v][c].get<double>() - b["vertices"][v][c].get<double>()) < 1e-12);
+      ++compared;
+    }
+  CHECK(compared == 96);
+}
+
+TEST_CASE("relax: invalid input exits 2 with one clear message") {
+  const fs::path dir = temporary_directory("invalid");
+  struct Case {
+    const char* name;
+    std::string config;
+    const char* message;
+  };
+  const fs::path out = dir / "out";
+  std::string unknown = sample_config(out);
+  unknown.replace(unknown.find("\"subdivisions\""), 14, "\"subdivision\"");
+  std::string bad_vertex = sample_config(out);
+  bad_vertex.replace(bad_vertex.find("\"vertex\": 13"), 12, "\"vertex\": 99");
+  std::string missing_file = sample_config(out, "", "no_such_file.obj");
+  std::string truncated = sample_config(out).substr(0, 120);
+  const Case cases[] = {
+      {"unknown key", unknown, "did you mean \"subdivisions\""},
+      {"vertex out of range", bad_vertex, "loads.forces[0].vertex"},
+      {"missing linkage file", missing_file, "no_such_file.obj"},
+      {"malformed JSON", truncated, "invalid JSON"},
+  };
+  int checked = 0;
+  for (const Case& c : cases) {
+    const std::string name = c.name;
+    CAPTURE(name);
+    write_text(dir / "bad.json", c.config);
+    const CommandResult r = run_xshell("relax bad.json", dir);
+    CAPTURE(r.errors);
+    CHECK(r.status == 2);
+    CHECK(r.errors.find(c.message) != std::string::npos);
+    CHECK(r.errors.find("xshell: error:") != std::string::npos);
+    ++checked;
+  }
+  CHECK(run_xshell("relax", dir).status == 2);                   // usage
+  CHECK(run_xshell("relax no_such_config.json", dir).status == 2);  // unreadable configuration
+  CHECK(checked == 4);
+}
+
+TEST_CASE("relax --init refuses a state that belongs to another linkage") {
+  const fs::path dir = temporary_directory("foreign");
+  write_text(dir / "saddle.json", sample_config(dir / "saddle", "", "saddle.obj"));
+  write_text(dir / "grid.json", sample_config(dir / "grid"));
+  REQUIRE(run_xshell("relax saddle.json", dir).status == 0);
+  const CommandResult r = run_xshell("relax grid.json --init saddle/state.json", dir);
+  CHECK(r.status == 2);
+  CHECK(r.errors.find("belongs to another linkage") != std::string::npos);
+}
+
+TEST_CASE("relax: an output directory that cannot be written exits 4") {
+  const fs::path dir = temporary_directory("unwritable");
+  write_text(dir / "a_file", "not a directory");
+  write_text(dir / "run.json", sample_config(dir / "a_file" / "out"));
+  const CommandResult r = run_xshell("relax run.json", dir);
+  CHECK(r.status == 4);
+  CHECK(r.errors.find("a_file") != std::string::npos);
+}
+
+TEST_CASE("relax: SIGINT writes the last state and an interrupted summary, and exits 130") {
+  const fs::path dir = temporary_directory("interrupt");
+  // Slow enough to interrupt: damped dynamics with fictitious masses.
+  write_text(dir / "run.json",
+             sample_config(dir / "out", R"(, "solver": {"method": "dynamics", "mass": "fictitious", "max_steps": 100000})"));
+  const std::string binary = XSHELL_BINARY, config = (dir / "run.json").string();
+  char* argv[] = {const_cast<char*>(binary.c_str()), const_cast<char*>("relax"), const_cast<char*>(config.c_str()),
+                  const_cast<char*>("--quiet"), nullptr};
+  pid_t pid = 0;
+  REQUIRE(posix_spawn(&pid, binary.c_str(), nullptr, nullptr, argv, environ) == 0);
+  // Wait until the run has written a few steps, then interrupt it.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline && !fs::exists(dir / "out" / "rods_000003.vtp"))
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  REQUIRE(fs::exists(dir / "out" / "rods_000003.vtp"));
+  kill(pid, SIGINT);
+  int raw = 0;
+  waitpid(pid, &raw, 0);
+  REQUIRE(WIFEXITED(raw));
+  CHECK(WEXITSTATUS(raw) == 130);
+  const nlohmann::json s = read_json(dir / "out" / "summary.json");
+  CHECK(s["interrupted"] == true);
+  CHECK(s["status"] == "interrupted");
+  CHECK(s["converged"] == false);
+  CHECK(read_json(dir / "out" / "state.json")["format"] == "xshell-state");
+  // The series is closed: it names every step file there is.
+  const std::string pvd = read_text(dir / "out" / "series.pvd");
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(dir / "out"))
+    if (entry.path().extension() == ".vtp") {
+      CHECK(pvd.find(entry.path().filename().string()) != std::string::npos);
+      ++files;
+    }
+  CHECK(files >= 4);
+}
