@@ -7,6 +7,8 @@ packages=(
   libeigen3-dev libsundials-dev libsuitesparse-dev libvtk9-dev
   doctest-dev nlohmann-json3-dev libcli11-dev
   xvfb xauth
+  clang libclang-rt-14-dev
+  python3-matplotlib
 )
 missing=()
 for p in "${packages[@]}"; do

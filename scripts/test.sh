@@ -5,6 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
+# OpenMP threads wait passively: several test programs run at once.
+export OMP_WAIT_POLICY=PASSIVE
 cd build
 if command -v xvfb-run >/dev/null 2>&1; then
   xvfb-run -a ctest --output-on-failure -j"$(nproc)" "$@"
