@@ -1,0 +1,478 @@
+// xshell_bench: the cost of a Newton iteration on real and generated
+// linkages, next to the cost of the sparse Cholesky factorization it needs.
+//
+// For every case (a graph of ../shared/data/elasticrods at subdivisions 8
+// and 10, and regular grids of growing size, without and with gravity) it
+// builds the statics problem of a relaxation from the flat input with
+// "rest_shape": "straight" (millimetres, E = 20000, nu = 0.3, rectangle
+// 10 x 7, no supports: the default pin) and measures, as medians of
+// repeated runs:
+//   energy + gradient, Hessian assembly, one numeric factorization
+//   (CholeskySolver, symbolic analysis reused), the whole Newton iteration
+//   (median over the iterations of a solve, from NewtonReport::seconds),
+// and the solve itself (Newton to gradient tolerance 1e-6): iterations and
+// time. Each case runs in a child process, so that its peak memory
+// (getrusage) is its own.
+//
+//   xshell_bench [--quick] [--reps N] [--graphs all|none|NAME,...] [--subdivisions 8,10]
+//                [--grids 4,8,14,25,44] [--no-solve] [--csv FILE] [--data DIR]
+#include <CLI/CLI.hpp>
+#include <sys/resource.h>
+#include <time.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "integrators/cholesky_solver.hpp"
+#include "integrators/linkage_objective.hpp"
+#include "integrators/newton.hpp"
+#include "io/obj_reader.hpp"
+#include "linkage/statics_problem.hpp"
+
+namespace {
+
+using namespace xshell;
+using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
+
+struct BenchCase {
+  std::string name;
+  std::string kind;  // "graph" or "grid"
+  LineGraph graph;
+  int subdivisions = 8;
+  bool gravity = false;
+};
+
+struct BenchResult {
+  std::string name, kind;
+  int subdivisions = 0, gravity = 0, threads = 1;
+  long unknowns = 0, free_unknowns = 0, hessian_nonzeros = 0;
+  double energy_gradient_ms = NAN, hessian_ms = NAN, factorization_ms = NAN;
+  double iteration_ms = NAN, factorizations_per_iteration = NAN, iteration_over_factorizations = NAN;
+  // The same in process CPU time (all threads): with one thread, what the
+  // wall times would be on an idle machine.
+  double hessian_cpu_ms = NAN, factorization_cpu_ms = NAN, iteration_cpu_ms = NAN, iteration_over_factorizations_cpu = NAN;
+  long iterations = -1;
+  double solve_s = NAN, gradient_measure = NAN;
+  std::string status = "skipped";
+  double peak_rss_mb = NAN;
+};
+
+const char* kColumns =
+    "case,kind,subdivisions,gravity,threads,unknowns,free_unknowns,hessian_nonzeros,energy_gradient_ms,"
+    "hessian_ms,factorization_ms,iteration_ms,factorizations_per_iteration,iteration_over_factorizations,"
+    "newton_iterations,solve_s,status,gradient_measure,peak_rss_mb,hessian_cpu_ms,factorization_cpu_ms,"
+    "iteration_cpu_ms,iteration_over_factorizations_cpu";
+
+std::string to_csv(const BenchResult& r) {
+  std::ostringstream o;
+  o.precision(6);
+  o << r.name << ',' << r.kind << ',' << r.subdivisions << ',' << r.gravity << ',' << r.threads << ','
+    << r.unknowns << ',' << r.free_unknowns << ',' << r.hessian_nonzeros << ',' << r.energy_gradient_ms << ','
+    << r.hessian_ms << ',' << r.factorization_ms << ',' << r.iteration_ms << ',' << r.factorizations_per_iteration
+    << ',' << r.iteration_over_factorizations << ',' << r.iterations << ',' << r.solve_s << ',' << r.status << ','
+    << r.gradient_measure << ',' << r.peak_rss_mb << ',' << r.hessian_cpu_ms << ',' << r.factorization_cpu_ms << ','
+    << r.iteration_cpu_ms << ',' << r.iteration_over_factorizations_cpu;
+  return o.str();
+}
+
+BenchResult from_csv(const std::string& line) {
+  std::vector<std::string> f;
+  std::stringstream in(line);
+  for (std::string item; std::getline(in, item, ',');) f.push_back(item);
+  BenchResult r;
+  if (f.size() != 23) {
+    r.status = "failed";
+    return r;
+  }
+  auto d = [](const std::string& s) { return std::strtod(s.c_str(), nullptr); };
+  r.name = f[0];
+  r.kind = f[1];
+  r.subdivisions = std::stoi(f[2]);
+  r.gravity = std::stoi(f[3]);
+  r.threads = std::stoi(f[4]);
+  r.unknowns = std::stol(f[5]);
+  r.free_unknowns = std::stol(f[6]);
+  r.hessian_nonzeros = std::stol(f[7]);
+  r.energy_gradient_ms = d(f[8]);
+  r.hessian_ms = d(f[9]);
+  r.factorization_ms = d(f[10]);
+  r.iteration_ms = d(f[11]);
+  r.factorizations_per_iteration = d(f[12]);
+  r.iteration_over_factorizations = d(f[13]);
+  r.iterations = std::stol(f[14]);
+  r.solve_s = d(f[15]);
+  r.status = f[16];
+  r.gradient_measure = d(f[17]);
+  r.peak_rss_mb = d(f[18]);
+  r.hessian_cpu_ms = d(f[19]);
+  r.factorization_cpu_ms = d(f[20]);
+  r.iteration_cpu_ms = d(f[21]);
+  r.iteration_over_factorizations_cpu = d(f[22]);
+  return r;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Process CPU time (all threads), seconds.
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+// Median wall time (ms) of reps runs of f; with cpu_ms, also the median CPU time.
+template <class F>
+double median_ms(int reps, F&& f, double* cpu_ms = nullptr) {
+  std::vector<double> t, c;
+  for (int i = 0; i < reps; ++i) {
+    const double cpu = cpu_seconds();
+    const Clock::time_point start = Clock::now();
+    f();
+    t.push_back(1e3 * std::chrono::duration<double>(Clock::now() - start).count());
+    c.push_back(1e3 * (cpu_seconds() - cpu));
+  }
+  if (cpu_ms) *cpu_ms = median(c);
+  return median(t);
+}
+
+// A regular grid of n x n crossings of straight rods (spacing 100 mm), each
+// rod running half a spacing past its last crossing to a free end, with the
+// crossings moved in the plane by up to 8 mm so that the rods are kinked at
+// the joints: relaxing it from flat with straight rest shapes has work to do.
+LineGraph wavy_grid(int n) {
+  const double spacing = 100.0, amplitude = 8.0;
+  LineGraph g;
+  auto joint = [&](int i, int j) { return i * n + j; };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = spacing * j, y = spacing * i;
+      g.vertices.emplace_back(x + amplitude * std::sin(1.3 * i + 0.7 * j), y + amplitude * std::cos(0.9 * i - 1.1 * j),
+                              0.0);
+    }
+  auto free_end = [&](double x, double y) {
+    g.vertices.emplace_back(x, y, 0.0);
+    return static_cast<int>(g.vertices.size()) - 1;
+  };
+  for (int i = 0; i < n; ++i) {  // rods along x, then along y
+    g.edges.push_back({free_end(-0.5 * spacing, spacing * i), joint(i, 0)});
+    for (int j = 0; j + 1 < n; ++j) g.edges.push_back({joint(i, j), joint(i, j + 1)});
+    g.edges.push_back({joint(i, n - 1), free_end(spacing * (n - 0.5), spacing * i)});
+  }
+  for (int j = 0; j < n; ++j) {
+    g.edges.push_back({free_end(spacing * j, -0.5 * spacing), joint(0, j)});
+    for (int i = 0; i + 1 < n; ++i) g.edges.push_back({joint(i, j), joint(i + 1, j)});
+    g.edges.push_back({joint(n - 1, j), free_end(spacing * j, spacing * (n - 0.5))});
+  }
+  return g;
+}
+
+LinkageProblem make_problem(const BenchCase& c) {
+  LineGraph graph = c.graph;
+  Eigen::Vector3d lo = graph.vertices.at(0), hi = lo;
+  for (const auto& v : graph.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  for (auto& v : graph.vertices) v -= 0.5 * (lo + hi);  // as the configuration reader does
+  LinkageOptions options;
+  options.subdivisions = c.subdivisions;
+  options.rest_shape = RestShape::Straight;
+  options.material.young_modulus = 20000.0;  // N/mm^2
+  options.material.poisson_ratio = 0.3;
+  options.material.density = c.gravity ? 1.0e-9 : 0.0;  // t/mm^3 (1000 kg/m^3)
+  options.material.section = {SectionShape::Rectangle, 10.0, 7.0};
+  StaticsSetup setup;
+  if (c.gravity) setup.gravity = Eigen::Vector3d(0.0, 0.0, -9810.0);  // mm/s^2
+  return LinkageProblem(RodLinkage(graph, options), setup);
+}
+
+// Median time of one numeric factorization of the free Hessian at the
+// start. An indefinite Hessian stops LL^T early: it is shifted as Newton
+// would shift it, so that the factorization timed is complete.
+double factorization_ms(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass, int reps, double* cpu_ms) {
+  CholeskySolver solver;
+  Eigen::VectorXd shift;
+  const Eigen::VectorXd* shift_ptr = nullptr;
+  if (solver.factorize(H) != FactorizationStatus::PositiveDefinite) {
+    const double scale = H.norm() / mass.norm();
+    for (double tau = 1e-8; tau < 1e8; tau *= 4.0) {
+      shift = (tau * scale) * mass;
+      if (solver.factorize(H, &shift) == FactorizationStatus::PositiveDefinite) break;
+    }
+    shift_ptr = &shift;
+  }
+  return median_ms(reps, [&] { solver.factorize(H, shift_ptr); }, cpu_ms);
+}
+
+BenchResult run_case(const BenchCase& c, int reps, bool solve) {
+  BenchResult r;
+  r.name = c.name;
+  r.kind = c.kind;
+  r.subdivisions = c.subdivisions;
+  r.gravity = c.gravity;
+#ifdef _OPENMP
+  r.threads = omp_get_max_threads();
+#endif
+  LinkageProblem problem = make_problem(c);
+  r.unknowns = problem.linkage().num_dofs();
+  r.free_unknowns = problem.num_free();
+  double sink = 0.0;
+  r.energy_gradient_ms = median_ms(reps, [&] {
+    sink += problem.energy().total();
+    sink += problem.free_gradient()[0];
+  });
+  r.hessian_ms = median_ms(reps, [&] { sink += problem.free_hessian().valuePtr()[0]; }, &r.hessian_cpu_ms);
+  const Eigen::SparseMatrix<double> H = problem.free_hessian();
+  r.hessian_nonzeros = H.nonZeros();
+  r.factorization_ms = factorization_ms(H, problem.free_mass(), reps, &r.factorization_cpu_ms);
+  if (!std::isfinite(sink)) std::fprintf(stderr, "non-finite energy\n");
+
+  if (solve) {
+    LinkageObjective objective(problem);
+    NewtonOptions options;
+    options.gradient_tolerance = 1e-6;
+    options.max_iterations = 100;
+    NewtonSolver solver(objective, options);
+    std::vector<double> seconds, cpu;
+    long factorizations = 0;
+    double total = 0.0, total_cpu = 0.0, last_cpu = 0.0;
+    NewtonCallbacks callbacks;
+    callbacks.on_iteration = [&](const NewtonReport& report) {
+      const double now = cpu_seconds();
+      if (report.iteration > 0) {
+        seconds.push_back(report.seconds);
+        cpu.push_back(now - last_cpu);  // includes the driver's bookkeeping between reports
+        total += report.seconds;
+        total_cpu += now - last_cpu;
+        factorizations += report.factorizations;
+      }
+      last_cpu = now;
+    };
+    const NewtonResult result = solver.solve(callbacks);
+    r.iterations = result.iterations;
+    r.solve_s = result.seconds;
+    r.gradient_measure = result.gradient_measure;
+    r.status = result.converged() ? (result.stable ? "converged" : "converged_unstable") : "failed";
+    if (!seconds.empty()) {
+      r.iteration_ms = 1e3 * median(seconds);
+      r.factorizations_per_iteration = double(factorizations) / double(seconds.size());
+      r.iteration_over_factorizations = 1e3 * total / (double(factorizations) * r.factorization_ms);
+      r.iteration_cpu_ms = 1e3 * median(cpu);
+      r.iteration_over_factorizations_cpu = 1e3 * total_cpu / (double(factorizations) * r.factorization_cpu_ms);
+    }
+  } else {
+    r.status = "not_solved";
+  }
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  r.peak_rss_mb = usage.ru_maxrss / 1024.0;  // kilobytes on Linux
+  return r;
+}
+
+// Runs one case in a child process; its result comes back as a CSV line.
+BenchResult run_isolated(const BenchCase& c, int reps, bool solve) {
+  int fd[2];
+  if (pipe(fd) != 0) throw std::runtime_error("pipe failed");
+  std::fflush(nullptr);
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    close(fd[0]);
+    std::string line;
+    try {
+      line = to_csv(run_case(c, reps, solve)) + "\n";
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s: %s\n", c.name.c_str(), e.what());
+      line = "error\n";
+    }
+    const ssize_t written = write(fd[1], line.data(), line.size());
+    close(fd[1]);
+    _exit(written == static_cast<ssize_t>(line.size()) ? 0 : 1);
+  }
+  close(fd[1]);
+  std::string text;
+  char buffer[4096];
+  for (ssize_t n; (n = read(fd[0], buffer, sizeof buffer)) > 0;) text.append(buffer, static_cast<size_t>(n));
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  BenchResult r = from_csv(text.substr(0, text.find('\n')));
+  if (r.name.empty()) {
+    r.name = c.name;
+    r.kind = c.kind;
+    r.subdivisions = c.subdivisions;
+    r.gravity = c.gravity;
+    r.status = "failed";
+  }
+  return r;
+}
+
+void print_row(const BenchResult& r) {
+  std::printf("%-24s %3d %2s %7ld %9ld %9.2f %9.2f %9.2f %9.2f %5.2f %6.2f %6.2f %4ld %8.2f %7.0f  %s\n",
+              r.name.c_str(), r.subdivisions, r.gravity ? "g" : "-", r.free_unknowns, r.hessian_nonzeros,
+              r.energy_gradient_ms, r.hessian_ms, r.factorization_ms, r.iteration_ms, r.factorizations_per_iteration,
+              r.iteration_over_factorizations, r.iteration_over_factorizations_cpu, r.iterations, r.solve_s,
+              r.peak_rss_mb, r.status.c_str());
+  std::fflush(stdout);
+}
+
+// Least-squares slope of log(y) against log(x).
+double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int n = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    if (!(x[i] > 0 && y[i] > 0)) continue;
+    const double lx = std::log(x[i]), ly = std::log(y[i]);
+    sx += lx;
+    sy += ly;
+    sxx += lx * lx;
+    sxy += lx * ly;
+    ++n;
+  }
+  if (n < 2) return NAN;
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+std::vector<int> parse_ints(const std::string& text) {
+  std::vector<int> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(std::stoi(item));
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"xshell_bench: cost of Newton iterations, assembly and factorization"};
+  bool quick = false, no_solve = false;
+  int reps = 5;
+  std::string graphs = "designs", subdivisions = "8,10", grids = "4,8,14,25,44", csv = "xshell_bench.csv";
+  std::string data = std::string(XSHELL_SOURCE_DIR) + "/../shared/data/elasticrods";
+  app.add_flag("--quick", quick, "two small designs at subdivision 8, grids 4,8,14, 3 repetitions");
+  app.add_option("--reps", reps, "repetitions of each timing (median reported)")->check(CLI::PositiveNumber);
+  app.add_option("--graphs", graphs,
+                 "\"designs\" (the five architectural designs, mm), \"all\", \"none\", or names (file stems or "
+                 "prefixes), comma-separated");
+  app.add_option("--subdivisions", subdivisions, "subdivisions for the graphs, comma-separated");
+  app.add_option("--grids", grids, "grid sizes (crossings per side), comma-separated; empty for none");
+  app.add_flag("--no-solve", no_solve, "skip the Newton solves");
+  app.add_option("--csv", csv, "CSV file to write");
+  app.add_option("--data", data, "folder of the real linkage graphs");
+  CLI11_PARSE(app, argc, argv);
+  if (quick) {
+    reps = std::min(reps, 3);
+    if (app.count("--graphs") == 0) graphs = "manta_ray,darth_vader";
+    if (app.count("--subdivisions") == 0) subdivisions = "8";
+    if (app.count("--grids") == 0) grids = "4,8,14";
+  }
+
+  std::vector<BenchCase> cases;
+  const std::vector<std::string> designs = {"manta_ray", "darth_vader", "scary_face", "hourglass", "large"};
+  if (graphs != "none") {
+    std::vector<std::string> wanted;
+    if (graphs == "designs") wanted = designs;
+    if (graphs != "designs" && graphs != "all") {
+      std::stringstream in(graphs);
+      for (std::string item; std::getline(in, item, ',');) wanted.push_back(item);
+    }
+    if (!fs::is_directory(data)) {
+      std::printf("graphs skipped: %s is absent\n", data.c_str());
+    } else {
+      std::vector<fs::path> files;
+      for (const auto& entry : fs::directory_iterator(data))
+        if (entry.path().extension() == ".obj") files.push_back(entry.path());
+      std::vector<std::pair<size_t, fs::path>> chosen;
+      for (const auto& path : files) {
+        const std::string stem = path.stem().string();
+        if (graphs == "all") chosen.emplace_back(0, path);
+        for (size_t k = 0; k < wanted.size(); ++k)
+          if (stem.rfind(wanted[k], 0) == 0) chosen.emplace_back(k, path);
+      }
+      std::sort(chosen.begin(), chosen.end());
+      for (int n : parse_ints(subdivisions))
+        for (const auto& [order, path] : chosen) {
+          BenchCase c;
+          c.name = path.stem().string().substr(0, 24);
+          c.kind = "graph";
+          c.graph = read_obj(path.string());
+          c.subdivisions = n;
+          cases.push_back(c);
+        }
+    }
+  }
+  for (int n : parse_ints(grids))
+    for (bool gravity : {false, true}) {
+      BenchCase c;
+      c.name = "grid" + std::to_string(n) + "x" + std::to_string(n);
+      c.kind = "grid";
+      c.graph = wavy_grid(n);
+      c.subdivisions = 8;
+      c.gravity = gravity;
+      cases.push_back(c);
+    }
+
+  int threads = 1;
+#ifdef _OPENMP
+  threads = omp_get_max_threads();
+#endif
+  std::printf("xshell_bench: %zu cases, %d repetitions, %d threads; times in ms (solve in s), medians\n",
+              cases.size(), reps, threads);
+  std::printf("%-24s %3s %2s %7s %9s %9s %9s %9s %9s %5s %6s %6s %4s %8s %7s  %s\n", "case", "n_s", "g", "free",
+              "H nnz", "E+grad", "Hessian", "factor", "iter", "f/it", "it/f", "cpu", "its", "solve", "MB", "status");
+  std::ofstream out(csv);
+  out << kColumns << "\n";
+  std::vector<BenchResult> results;
+  for (const BenchCase& c : cases) {
+    BenchResult r = run_isolated(c, reps, !no_solve);
+    print_row(r);
+    out << to_csv(r) << "\n";
+    out.flush();
+    results.push_back(r);
+  }
+
+  // Scaling over the grids without gravity: everything but the
+  // factorizations, and the factorization itself.
+  std::vector<double> n, outside, factor, hessian, gradient, outside_cpu, factor_cpu, hessian_cpu;
+  for (const BenchResult& r : results) {
+    if (r.kind != "grid" || r.gravity) continue;
+    n.push_back(double(r.free_unknowns));
+    factor.push_back(r.factorization_ms);
+    hessian.push_back(r.hessian_ms);
+    gradient.push_back(r.energy_gradient_ms);
+    outside.push_back(r.iteration_ms - r.factorizations_per_iteration * r.factorization_ms);
+    factor_cpu.push_back(r.factorization_cpu_ms);
+    hessian_cpu.push_back(r.hessian_cpu_ms);
+    outside_cpu.push_back(r.iteration_cpu_ms - r.factorizations_per_iteration * r.factorization_cpu_ms);
+  }
+  if (n.size() >= 2) {
+    std::printf("log-log slopes over the grids (%.0f to %.0f unknowns): iteration minus factorizations %.2f, "
+                "Hessian %.2f, energy+gradient %.2f, factorization %.2f\n",
+                n.front(), n.back(), loglog_slope(n, outside), loglog_slope(n, hessian), loglog_slope(n, gradient),
+                loglog_slope(n, factor));
+    std::printf("the same in CPU time: iteration minus factorizations %.2f, Hessian %.2f, factorization %.2f\n",
+                loglog_slope(n, outside_cpu), loglog_slope(n, hessian_cpu), loglog_slope(n, factor_cpu));
+  }
+  std::printf("wrote %s\n", csv.c_str());
+  return 0;
+}
