@@ -1,8 +1,8 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Plots xshell_bench's CSV: time per Newton iteration and per numeric
 factorization against the number of free unknowns, log-log.
 
-    python3 bench/plot.py xshell_bench.csv bench.png
+    /usr/bin/python3 bench/plot.py xshell_bench.csv bench.png   (Debian python3-matplotlib)
 """
 import csv
 import sys

@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -364,6 +365,15 @@ std::vector<int> parse_ints(const std::string& text) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Threads that wait at a barrier sleep rather than spin: on a machine
+  // shared with other work (more runnable threads than cores) spinning makes
+  // every parallel region wait for a descheduled partner (measured: the
+  // Hessian on 2 threads 5x slower than on 1). libgomp reads the policy when
+  // it loads, so set it and start again.
+  if (std::getenv("OMP_WAIT_POLICY") == nullptr) {
+    setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
+    execv("/proc/self/exe", argv);
+  }
   CLI::App app{"xshell_bench: cost of Newton iterations, assembly and factorization"};
   bool quick = false, no_solve = false;
   int reps = 5;
@@ -436,8 +446,9 @@ int main(int argc, char** argv) {
 #ifdef _OPENMP
   threads = omp_get_max_threads();
 #endif
-  std::printf("xshell_bench: %zu cases, %d repetitions, %d threads; times in ms (solve in s), medians\n",
-              cases.size(), reps, threads);
+  std::printf("xshell_bench: %zu cases, %d repetitions, %d threads (OMP_WAIT_POLICY=%s); times in ms (solve in s), "
+              "medians; it/f: iteration / its factorizations (wall), cpu: the same in CPU time\n",
+              cases.size(), reps, threads, std::getenv("OMP_WAIT_POLICY"));
   std::printf("%-24s %3s %2s %7s %9s %9s %9s %9s %9s %5s %6s %6s %4s %8s %7s  %s\n", "case", "n_s", "g", "free",
               "H nnz", "E+grad", "Hessian", "factor", "iter", "f/it", "it/f", "cpu", "its", "solve", "MB", "status");
   std::ofstream out(csv);
