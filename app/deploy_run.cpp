@@ -46,7 +46,7 @@ DeploymentOptions deployment_options(const Config& config) {
   o.dynamics.mass = s.mass == MassSetting::Fictitious ? MassModel::Fictitious : MassModel::Physical;
   o.dynamics.damping = s.damping.value_or(0.0);
   o.dynamics.gradient_tolerance = s.gradient_tolerance;
-  o.dynamics.max_steps = s.max_steps;
+  o.dynamics.max_steps = s.step_limit();
   return o;
 }
 

@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   RelaxArguments relax;
   CLI::App* relax_cmd = app.add_subcommand("relax", "Find the static equilibrium of a linkage");
   relax_cmd->add_option("config", relax.config, "Configuration (JSON)")->required();
-  relax_cmd->add_option("--solver", relax.solver, "newton | dynamics (overrides solver.method)");
+  relax_cmd->add_option("--solver", relax.solver, "newton | dynamics | kinetic-damping (overrides solver.method)");
   relax_cmd->add_option("--out", relax.out, "Output directory (overrides output.directory)");
   relax_cmd->add_option("--init", relax.init, "Start from a state.json written by an earlier run");
   relax_cmd->add_flag("--quiet", relax.quiet, "No progress lines");

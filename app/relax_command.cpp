@@ -10,6 +10,7 @@
 #include "deploy_run.hpp"
 #include "exit_status.hpp"
 #include "integrators/dynamics.hpp"
+#include "integrators/kinetic_damping.hpp"
 #include "integrators/linkage_objective.hpp"
 #include "integrators/newton.hpp"
 #include "io/config.hpp"
@@ -33,17 +34,24 @@ SolverMethod parse_method(const std::string& name) {
   if (name == "newton") return SolverMethod::Newton;
   if (name == "dynamics") return SolverMethod::Dynamics;
   if (name == "kinetic-damping") return SolverMethod::KineticDamping;
-  throw InputError("--solver: unknown solver \"" + name + "\" (choose newton or dynamics)");
+  throw InputError("--solver: unknown solver \"" + name + "\" (choose newton, dynamics or kinetic-damping)");
 }
 
-// Features the configuration can name but this version does not run yet:
+// Combinations the configuration can name but this version does not run:
 // refuse them clearly rather than ignore them.
 void check_available(const Config& config) {
-  if (config.solver.method == SolverMethod::KineticDamping)
-    throw InputError(config.source + ": solver.method: \"kinetic-damping\" is not available in this version; use \"newton\" or \"dynamics\"");
+  if (config.solver.method == SolverMethod::KineticDamping && config.deployment)
+    throw InputError(config.source + ": deployment: not available with solver.method \"kinetic-damping\"; use \"newton\" or \"dynamics\"");
 }
 
-const char* method_name(SolverMethod m) { return m == SolverMethod::Newton ? "newton" : "dynamics"; }
+const char* method_name(SolverMethod m) {
+  switch (m) {
+    case SolverMethod::Newton: return "newton";
+    case SolverMethod::Dynamics: return "dynamics";
+    case SolverMethod::KineticDamping: return "kinetic-damping";
+  }
+  return "unknown";
+}
 
 std::string status_name(NewtonStatus s) {
   switch (s) {
@@ -65,6 +73,17 @@ std::string status_name(DynamicsStatus s) {
     case DynamicsStatus::IntegratorFailed: return "integrator_failed";
     case DynamicsStatus::NonFinite: return "non_finite";
     case DynamicsStatus::Interrupted: return "interrupted";
+  }
+  return "unknown";
+}
+
+std::string status_name(KineticDampingStatus s) {
+  switch (s) {
+    case KineticDampingStatus::Converged: return "converged";
+    case KineticDampingStatus::MaxIterations: return "max_iterations";
+    case KineticDampingStatus::InvalidConfiguration: return "invalid_configuration";
+    case KineticDampingStatus::NonFinite: return "non_finite";
+    case KineticDampingStatus::Interrupted: return "interrupted";
   }
   return "unknown";
 }
@@ -222,13 +241,48 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
     summary.gradient_norm = result.gradient_measure;
     interrupted = result.status == NewtonStatus::Interrupted;
     outputs->step(result.iterations, true);
+  } else if (config.solver.method == SolverMethod::KineticDamping) {
+    KineticDampingOptions options;
+    options.gradient_tolerance = config.solver.gradient_tolerance;
+    options.max_iterations = config.solver.step_limit();
+    KineticDampingCallbacks callbacks;
+    callbacks.stop = &halt;
+    long resets = 0;
+    double seconds = 0.0;
+    callbacks.on_iteration = [&](const KineticDampingReport& r) {
+      resets += r.reset ? 1 : 0;
+      seconds += r.seconds;
+      // The history keeps the resets and every 100th iteration.
+      if (r.reset || r.iteration % 100 == 0)
+        summary.history.push_back({r.iteration, double(r.iteration), r.energy, r.gradient_measure, r.step_norm,
+                                   r.kinetic_energy, r.seconds});
+      // Thousands of iterations: a progress line every 100, and at resets of
+      // the first 100.
+      if (progress && (r.iteration % 100 == 0 || (r.reset && r.iteration < 100)))
+        std::fprintf(stderr, "kinetic-damping %7ld  energy %.10e  kinetic %.3e  gradient %.3e  resets %ld  %.3f s\n",
+                     r.iteration, r.energy, r.kinetic_energy, r.gradient_measure, resets, seconds);
+      // VTK steps at the resets (the kinetic-energy peaks), not at every
+      // leapfrog iteration.
+      if (r.reset) outputs->step(r.iteration, false);
+      poll();
+    };
+    poll();
+    const KineticDampingResult result = solve_kinetic_damping(objective, options, callbacks);
+    summary.status = status_name(result.status);
+    summary.reason = result.reason;
+    summary.converged = result.converged();
+    summary.stable = result.stable;
+    summary.iterations = result.iterations;
+    summary.gradient_norm = result.gradient_measure;
+    interrupted = result.status == KineticDampingStatus::Interrupted;
+    outputs->step(result.iterations, true);
   } else {
     DynamicsOptions options;
     options.form = config.solver.first_order ? DynamicsForm::FirstOrder : DynamicsForm::SecondOrder;
     options.mass = config.solver.mass == MassSetting::Fictitious ? MassModel::Fictitious : MassModel::Physical;
     options.damping = config.solver.damping.value_or(0.0);
     options.gradient_tolerance = config.solver.gradient_tolerance;
-    options.max_steps = config.solver.max_steps;
+    options.max_steps = config.solver.step_limit();
     DynamicsCallbacks callbacks;
     callbacks.stop = &halt;
     callbacks.on_step = [&](const DynamicsReport& r) {
@@ -276,7 +330,7 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
 
   std::fprintf(stderr, "xshell: %s after %ld %s: %s; energy %.10e, gradient %.3e (tolerance %.1e), %s; outputs in %s\n",
                summary.status.c_str(), summary.iterations,
-               config.solver.method == SolverMethod::Newton ? "iterations" : "steps", summary.reason.c_str(),
+               config.solver.method == SolverMethod::Dynamics ? "steps" : "iterations", summary.reason.c_str(),
                summary.energy.total(), summary.gradient_norm, summary.gradient_tolerance,
                summary.stable ? "stable" : "NOT stable (a saddle or a mechanism)", dir.string().c_str());
   if (interrupted) return kExitInterrupted;

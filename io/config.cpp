@@ -327,7 +327,7 @@ nlohmann::json to_json(const Config& c) {
         {"mass", name_of(s.mass, kMasses)},
         {"damping", s.damping ? nlohmann::json(*s.damping) : nlohmann::json("auto")},
         {"first_order", s.first_order},
-        {"max_steps", s.max_steps}}},
+        {"max_steps", s.step_limit()}}},
       {"output",
        {{"directory", c.output.directory},
         {"every", c.output.every},

@@ -53,7 +53,7 @@ enum class LineSearchSetting {
   Kinsol,  // "kinsol": KINSOL's own line search on 1/2 |scaled gradient|^2
 };
 
-// "solver.mass" (dynamics and kinetic-damping).
+// "solver.mass" (dynamics; kinetic damping always uses fictitious masses).
 enum class MassSetting {
   Physical,    // "physical": the rods' mass from density and cross-section
   Fictitious,  // "fictitious": a mass chosen for the fastest stable relaxation
@@ -121,7 +121,11 @@ struct SolverOptions {
                                          // 1 / time
   bool first_order = false;              // "first_order", default false: integrate the
                                          // first-order (gradient flow) system instead
-  int max_steps = 5000;                  // "max_steps", >= 1, default 5000 (time steps)
+  std::optional<int> max_steps;          // "max_steps", >= 1: time steps (dynamics) or leapfrog
+                                         // iterations (kinetic-damping); default: step_limit()
+  // max_steps, or its default for the method: 5000 time steps of damped
+  // dynamics, 1000000 leapfrog iterations of kinetic damping.
+  int step_limit() const { return max_steps.value_or(method == SolverMethod::KineticDamping ? 1000000 : 5000); }
 };
 
 // "output".

@@ -3,12 +3,13 @@
 // Fields (units are those of the configuration):
 //   status            "converged" | "max_iterations" | "linear_solver_failed" |
 //                     "line_search_failed" | "integrator_failed" | "non_finite" | "interrupted" |
-//                     "step_failed" (a deployment step failed even with halved increments)
+//                     "step_failed" (a deployment step failed even with halved increments) |
+//                     "invalid_configuration" (kinetic damping kept leaving valid configurations)
 //   reason            one line
 //   converged, stable, interrupted   booleans; stable: an LL^T factorization of the free
 //                     Hessian succeeded at the final state (a saddle is never stable)
-//   solver            "newton" | "dynamics"
-//   iterations        Newton iterations or dynamics steps
+//   solver            "newton" | "dynamics" | "kinetic-damping"
+//   iterations        Newton iterations, dynamics steps or kinetic-damping (leapfrog) iterations
 //   simulated_time    dynamics only
 //   wall_seconds
 //   unknowns, free_unknowns
@@ -21,7 +22,8 @@
 //   opening_angles    per vertex, radians; null for free ends
 //   default_support   the vertex pinned when no support was given, else null
 //   history           per iteration/step: {iteration, time, energy, gradient_norm, step,
-//                     kinetic_energy, seconds}
+//                     kinetic_energy, seconds}; kinetic damping keeps only its resets and
+//                     every 100th iteration
 //   deployment        only for a run with a "deployment": {actuation ("average_opening_angle" |
 //                     "joint_angles"), status ("completed" | "step_failed" | "interrupted"),
 //                     steps (accepted steps after step 0, the start), failed_attempts (steps

@@ -205,3 +205,13 @@ TEST_CASE("relax with prescribed joint angles, and the errors of a deployment") 
   CHECK(fixed.status == 2);
   CHECK(fixed.errors.find("deployment.average_opening_angle") != std::string::npos);
 }
+
+TEST_CASE("relax: a deployment with kinetic damping is refused, not ignored") {
+  const fs::path dir = temporary_directory("deploy-kinetic");
+  write_text(dir / "dome.obj", dome_obj(true));
+  write_text(dir / "run.json", deploy_config(R"({"average_opening_angle": 1.9, "steps": 2})"));
+  const CommandResult r = run_xshell("relax run.json --solver kinetic-damping", dir);
+  CHECK(r.status == 2);
+  CHECK(r.errors.find("deployment: not available with solver.method \"kinetic-damping\"") != std::string::npos);
+  CHECK(!fs::exists(dir / "out" / "summary.json"));
+}

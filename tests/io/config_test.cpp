@@ -104,7 +104,8 @@ TEST_CASE("config: defaults are filled in") {
   CHECK(c.solver.mass == MassSetting::Physical);
   CHECK_FALSE(c.solver.damping.has_value());
   CHECK_FALSE(c.solver.first_order);
-  CHECK(c.solver.max_steps == 5000);
+  CHECK(!c.solver.max_steps);
+  CHECK(c.solver.step_limit() == 5000);
   CHECK(c.solver.line_search == LineSearchSetting::Energy);
   CHECK(c.output.directory == "/runs/a/out");
   CHECK(c.output.every == 1);
@@ -138,7 +139,7 @@ TEST_CASE("config: every key is read") {
   CHECK(c.solver.damping == 0.5);
   CHECK(c.solver.first_order);
   CHECK(c.solver.line_search == LineSearchSetting::Kinsol);
-  CHECK(c.solver.max_steps == 700);
+  CHECK(c.solver.step_limit() == 700);
   CHECK(c.output.directory == "/tmp/results");
   CHECK(c.output.every == 5);
   CHECK(c.output.format == OutputFormat::Ascii);
