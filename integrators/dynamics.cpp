@@ -6,9 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <stdexcept>
 
 #include "mass_and_damping.hpp"
+#include "newton.hpp"
 #include "objective_evaluator.hpp"
 #include "sundials_handles.hpp"
 
@@ -52,23 +55,21 @@ constexpr double kStagnantStepRatio = 1e-12;
 // linear solver's backend) must outlive this object.
 struct IdaIntegrator {
   SunContext context;
-  NVector y, yp, atol;
+  NVector y, yp, atol, id;
   SunMatrix placeholder;
   SunLinearSolver linear_solver;
   IdaMemory ida;
   std::string last_message;
 
   IdaIntegrator(DynamicsSystem& system, const DynamicsOptions& options, const Eigen::VectorXd& y0,
-                const Eigen::VectorXd& yp0) {
-    const Eigen::Index size = system.size(), n = system.unknowns();
+                const Eigen::VectorXd& yp0, const Eigen::VectorXd& absolute_tolerances) {
+    const Eigen::Index size = system.size();
     y = make_serial_vector(size, context);
     yp = make_serial_vector(size, context);
     atol = make_serial_vector(size, context);
     as_eigen(y.get()) = y0;
     as_eigen(yp.get()) = yp0;
-    Eigen::Map<Eigen::VectorXd> a = as_eigen(atol.get());
-    a.head(n).setConstant(options.absolute_tolerance);
-    if (size > n) a.tail(size - n).setConstant(options.absolute_tolerance * 0.5 * system.damping());
+    as_eigen(atol.get()) = absolute_tolerances;
     placeholder = make_placeholder_matrix(context);
     linear_solver = make_direct_linear_solver(context, system);
     ida.reset(IDACreate(context));
@@ -85,6 +86,19 @@ struct IdaIntegrator {
     check_sundials(IDASetJacFn(m, &DynamicsSystem::jacobian), "IDASetJacFn");
     if (options.initial_step > 0.0)
       check_sundials(IDASetInitStep(m, options.initial_step), "IDASetInitStep");
+    // The gradient flow at BDF orders 3-5 (not A-stable) let the energy rise
+    // by 1e-6 of its drop while a column buckled; orders 1-2 do not.
+    const int order = system.form() == DynamicsForm::FirstOrder ? std::min(2, options.max_order) : options.max_order;
+    check_sundials(IDASetMaxOrd(m, order), "IDASetMaxOrd");
+    if (options.suppress_velocity && size > system.unknowns()) {
+      id = make_serial_vector(size, context);
+      Eigen::Map<Eigen::VectorXd> ids = as_eigen(id.get());
+      ids.head(system.unknowns()).setOnes();
+      ids.tail(size - system.unknowns()).setZero();
+      check_sundials(IDASetId(m, id.get()), "IDASetId");
+      check_sundials(IDASetSuppressAlg(m, SUNTRUE), "IDASetSuppressAlg");
+    }
+    if (options.eta_max != 2.0) check_sundials(IDASetEtaMax(m, options.eta_max), "IDASetEtaMax");
   }
 };
 
@@ -117,6 +131,97 @@ void classify_failure(int flag, const ObjectiveEvaluator& evaluator, const Dynam
 
 }  // namespace
 
+namespace {
+
+// Dimensionless size of a unit of every unknown: the gradient weights have
+// the unknowns' units over an energy, so w_i / min_j w_j is 1 for the
+// unknowns measured in the smallest units (angles for the linkage) and the
+// length scale for the others (positions). Tolerances and the rebase
+// distance are multiples of it.
+Eigen::VectorXd unknown_scales(const Eigen::VectorXd& weights) {
+  const Eigen::VectorXd w = weights.cwiseAbs();
+  const double smallest = w.size() > 0 ? w.minCoeff() : 0.0;
+  if (!(smallest > 0.0) || !w.allFinite()) return Eigen::VectorXd::Ones(w.size());
+  return w / smallest;
+}
+
+struct DampingChoice {
+  Damping damping;
+  double c = 0.0;  // reported
+  long factorizations = 0;
+  bool unstable = false;  // the Hessian was indefinite
+  ModeEstimate modes;
+};
+
+DampingChoice choose_damping(const DynamicsOptions& options, CholeskySolver& solver,
+                             const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
+                             const ModeEstimate* warm = nullptr) {
+  DampingChoice choice;
+  const bool rayleigh = options.damping_model == DampingModel::Rayleigh;
+  if (!rayleigh) {
+    double c = options.damping;
+    if (!(c > 0.0)) {
+      const LowestMode mode =
+          estimate_lowest_mode(solver, H, mass, options.damping_iterations, options.shift);
+      choice.factorizations = mode.factorizations;
+      choice.unstable = mode.shifted;
+      c = automatic_damping(mode, H, mass);
+    }
+    choice.c = c;
+    choice.damping.mass_coefficient = c;
+    choice.damping.rate = 0.5 * c;
+    return choice;
+  }
+  // Rayleigh: C = b (H + mu M).
+  choice.modes = estimate_modes(solver, H, mass, options.damping_iterations, options.shift, 4, warm);
+  const ModeEstimate& m = choice.modes;
+  choice.factorizations = m.lowest.factorizations;
+  double trace = 0.0;
+  for (Eigen::Index i = 0; i < H.rows(); ++i) trace += std::abs(H.coeff(i, i));
+  const double floor = std::max(options.mode_floor * trace / mass.sum(), std::numeric_limits<double>::min());
+  double mu = 0.0, b = 0.0, omega = 0.0;
+  if (!m.lowest.ok) {
+    // Nothing known: mass-proportional damping with c = 1.
+    choice.damping.mass_coefficient = 1.0;
+    choice.damping.rate = 0.5;
+    choice.c = 1.0;
+    return choice;
+  }
+  if (m.lowest.eigenvalue > 0.0 || !m.lowest.shifted) {
+    const double lambda = std::max(m.lowest.eigenvalue, floor);
+    mu = lambda;
+    omega = std::sqrt(lambda);
+    b = 1.0 / omega;
+  } else {
+    choice.unstable = true;
+    const double negative = -m.lowest.eigenvalue;
+    const double lambda = m.stable.ok ? std::max(m.stable.eigenvalue, floor) : std::max(negative, floor);
+    // An (almost) zero mode, such as a joint free to open at the start,
+    // still gets damping C x = b mu M x: mu is at least a fraction of the
+    // lowest stable eigenvalue, or the mode would move without bound.
+    mu = std::max((options.form == DynamicsForm::SecondOrder ? options.unstable_margin : 2.0) * negative,
+                  options.zero_mode_fraction * lambda);
+    const Eigen::VectorXd shift = mu * mass;
+    ++choice.factorizations;
+    if (solver.factorize(H, &shift) != FactorizationStatus::PositiveDefinite) mu = std::max(mu, m.certified_shift);
+    omega = std::sqrt(lambda);
+    b = 2.0 * omega / (lambda + mu);
+  }
+  if (options.damping > 0.0) {  // a given c: critical damping at lambda = c^2 / 4
+    omega = 0.5 * options.damping;
+    b = 1.0 / omega;
+    mu = std::max(mu, omega * omega);
+  }
+  choice.damping.mass_coefficient = b * mu;
+  choice.damping.stiffness_coefficient = b;
+  choice.damping.stiffness = H;
+  choice.damping.rate = omega;
+  choice.c = b * mu;
+  return choice;
+}
+
+}  // namespace
+
 DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& options,
                               const DynamicsCallbacks& callbacks) {
   const Clock::time_point start = Clock::now();
@@ -137,14 +242,11 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
   const Eigen::SparseMatrix<double>& H0 = objective.hessian();
   Eigen::VectorXd mass =
       options.mass == MassModel::Physical ? objective.mass() : fictitious_mass(H0);
-  double damping = options.damping;
-  if (!(damping > 0.0)) {
-    const LowestMode mode =
-        estimate_lowest_mode(estimator, H0, mass, options.damping_iterations, options.shift);
-    damping = automatic_damping(mode, H0, mass);
-  }
-  result.damping = damping;
-  DynamicsSystem system(evaluator, options.form, mass, damping);
+  DampingChoice choice = choose_damping(options, estimator, H0, mass);
+  long extra_factorizations = 0;
+  result.damping = choice.c;
+  result.stiffness_damping = choice.damping.stiffness_coefficient;
+  DynamicsSystem system(evaluator, options.form, mass, choice.damping);
   const bool second_order = options.form == DynamicsForm::SecondOrder;
 
   // Initial state at rest.
@@ -152,6 +254,15 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
   y.head(n) = objective.get();
   if (second_order) y.tail(n).setZero();
   Eigen::VectorXd weights = objective.gradient_weights();
+  const Eigen::VectorXd scales =
+      options.scaled_tolerances ? unknown_scales(weights) : Eigen::VectorXd::Ones(n);
+  double relative_tolerance = options.relative_tolerance, tolerance_scale = 1.0;
+  auto absolute_tolerances = [&] {
+    Eigen::VectorXd atol(system.size());
+    atol.head(n) = tolerance_scale * options.absolute_tolerance * scales;
+    if (second_order) atol.tail(n) = atol.head(n) * system.damping().rate;
+    return atol;
+  };
   const double energy0 = objective.energy();
   DynamicsReport report;
   report.energy = energy0;
@@ -171,10 +282,45 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
   } else if (report.gradient_measure <= options.gradient_tolerance) {
     finish(DynamicsStatus::Converged, "in equilibrium at the start");
   } else {
-    IdaIntegrator integrator(system, options, y, system.consistent_derivatives(y));
-    const double time_scale = 2.0 / damping;
+    IdaIntegrator integrator(system, options, y, system.consistent_derivatives(y, 0.0),
+                             absolute_tolerances());
+    auto accumulate_stats = [&] {
+      long value = 0;
+      void* m = integrator.ida.get();
+      IDAGetNumResEvals(m, &value);
+      result.residual_evaluations += value;
+      IDAGetNumErrTestFails(m, &value);
+      result.error_test_failures += value;
+      IDAGetNumNonlinSolvConvFails(m, &value);
+      result.convergence_failures += value;
+    };
+    // Rayleigh damping from the Hessian at the current configuration.
+    auto refreshed_damping = [&]() {
+      const Eigen::SparseMatrix<double>& H = objective.hessian();
+      if (options.refresh_damping >= 2) {
+        const ModeEstimate warm = choice.modes;
+        choice = choose_damping(options, estimator, H, mass, &warm);
+        result.damping = choice.c;
+        return choice.damping;
+      }
+      Damping d = system.damping();
+      const double b = d.stiffness_coefficient;
+      if (!(b > 0.0)) return d;
+      const Eigen::VectorXd shift = (d.mass_coefficient / b) * mass;
+      d.stiffness = H;
+      if (estimator.factorize(H, &shift) != FactorizationStatus::PositiveDefinite) {
+        const ShiftedFactorization f = factorize_with_shift(estimator, H, mass, options.shift);
+        d.mass_coefficient = b * f.shift;
+      }
+      return d;
+    };
+    const double time_scale = 1.0 / system.damping().rate;
     Eigen::VectorXd last_good = y;
+    Eigen::VectorXd rebased_at = y.head(n);
+    Eigen::VectorXd refreshed_at = y.head(n);
+    long last_rebase = 0;
     double t = 0.0;
+    bool endgame = false;
     for (;;) {
       if (callbacks.stop != nullptr && callbacks.stop->load()) {
         finish(DynamicsStatus::Interrupted, "stop flag raised");
@@ -198,6 +344,14 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       if (flag < 0) {
         classify_failure(flag, evaluator, system, integrator.last_message, result);
         y = last_good;
+        // IDA gave up late in a run whose motion had died out (error tests
+        // at the round-off floor of the residual): the end game can still
+        // finish it from the last accepted state if that is a stable basin.
+        if (options.endgame_steps > 0.0 && t * system.damping().rate >= options.endgame_steps &&
+            kinetic(y) <= 1e-6 * std::max(std::abs(energy0 - report.energy), std::abs(report.energy))) {
+          evaluator.move_to(y.head(n));
+          endgame = is_positive_definite(system.cholesky(), objective.hessian());
+        }
         break;
       }
       ++result.steps;
@@ -211,6 +365,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       }
       double h = 0.0;
       IDAGetLastStep(integrator.ida.get(), &h);
+      IDAGetLastOrder(integrator.ida.get(), &report.order);
       report.step = result.steps;
       report.time = t;
       report.step_size = h;
@@ -232,6 +387,17 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
                    (evaluator.last_message().empty() ? "" : ": " + evaluator.last_message()));
         break;
       }
+      // The end game: the motion has died out as far as IDA resolves it
+      // and its steps have grown to many time constants. Implicit Euler
+      // with an infinite step is a Newton step, so the remaining steps are
+      // taken at that limit (Newton with the energy line search), once the
+      // Hessian is positive definite (a stable basin, not a saddle).
+      if (options.endgame_steps > 0.0 && h * system.damping().rate >= options.endgame_steps &&
+          is_positive_definite(system.cholesky(), objective.hessian())) {
+        last_good = y;
+        endgame = true;
+        break;
+      }
       last_good = y;
       const double energy_scale =
           std::max(std::abs(energy0 - report.energy), std::abs(report.energy));
@@ -240,7 +406,23 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         finish(DynamicsStatus::Converged, "gradient and kinetic energy below tolerance");
         break;
       }
-      if (result.steps % std::max(options.rebase_interval, 1) == 0) {
+      const bool blending = system.update_blend(t);
+      if (!blending && options.refresh_distance > 0.0 &&
+          options.damping_model == DampingModel::Rayleigh &&
+          (y.head(n) - refreshed_at).cwiseQuotient(scales).cwiseAbs().maxCoeff() >
+              options.refresh_distance) {
+        // Stiffness-proportional damping from the Hessian here, blended in.
+        refreshed_at = y.head(n);
+        system.blend_damping(refreshed_damping(), t, options.blend_steps * h);
+        ++result.refreshes;
+      }
+      const bool far = options.rebase_distance > 0.0 &&
+                       ((y.head(n) - rebased_at).cwiseQuotient(scales).cwiseAbs().maxCoeff() >
+                        options.rebase_distance);
+      const bool due = options.rebase_interval > 0 &&
+                       result.steps - last_rebase >= options.rebase_interval;
+      if (far || due) {
+        last_rebase = result.steps;
         Eigen::VectorXd v = second_order ? Eigen::VectorXd(y.tail(n)) : Eigen::VectorXd();
         objective.rebase(second_order ? &v : nullptr);
         evaluator.sync();
@@ -248,18 +430,75 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         const Eigen::VectorXd before = y;
         y.head(n) = objective.get();
         if (second_order) y.tail(n) = v;
+        rebased_at = y.head(n);
+        refreshed_at = y.head(n);
         weights = objective.gradient_weights();
         last_good = y;
-        if (y == before) continue;  // nothing was re-expressed: no restart needed
+        bool restart = !(y == before);
+        if (options.refresh_damping > 0 && options.damping_model == DampingModel::Rayleigh) {
+          system.set_damping(refreshed_damping());
+          restart = true;
+        } else if (options.refresh_damping > 0 && choice.unstable) {
+          choice = choose_damping(options, estimator, objective.hessian(), mass);
+          system.set_damping(choice.damping);
+          restart = true;
+        }
+        if (!restart) continue;  // nothing was re-expressed: no restart needed
         as_eigen(integrator.y.get()) = y;
-        as_eigen(integrator.yp.get()) = system.consistent_derivatives(y);
+        as_eigen(integrator.yp.get()) = system.consistent_derivatives(y, t);
+        accumulate_stats();
         void* m = integrator.ida.get();
         check_sundials(IDAReInit(m, t, integrator.y.get(), integrator.yp.get()), "IDAReInit");
-        check_sundials(IDASetInitStep(m, h), "IDASetInitStep");
+        as_eigen(integrator.atol.get()) = absolute_tolerances();
+        check_sundials(IDASVtolerances(m, relative_tolerance, integrator.atol.get()),
+                       "IDASVtolerances");
+        check_sundials(IDASetInitStep(m, options.restart_step > 0 ? h * options.restart_step : 0.0), "IDASetInitStep");
       }
     }
+    accumulate_stats();
     // Leave the objective at the last accepted state.
     evaluator.move_to(y.head(n));
+    if (endgame) {
+      NewtonOptions newton;
+      newton.gradient_tolerance = options.gradient_tolerance;
+      newton.max_iterations = static_cast<int>(std::min<long>(100, std::max<long>(1, options.max_steps - result.steps)));
+      newton.shift = options.shift;
+      NewtonCallbacks forward;
+      forward.stop = callbacks.stop;
+      const long steps_before = result.steps;
+      forward.on_iteration = [&](const NewtonReport& r) {
+        if (r.iteration == 0) return;  // the state IDA ended in, reported already
+        report.step = steps_before + r.iteration;
+        report.order = 0;
+        report.energy = r.energy;
+        report.kinetic_energy = 0.0;
+        report.gradient_measure = r.gradient_measure;
+        if (callbacks.on_step) callbacks.on_step(report);
+      };
+      if (second_order) y.tail(n).setZero();  // the infinite step ends at rest
+      const NewtonResult polished = solve_newton(objective, newton, forward);
+      result.steps += polished.iterations;
+      result.endgame_steps = polished.iterations;
+      extra_factorizations += polished.factorizations;
+      evaluator.sync();
+      y.head(n) = objective.get();
+      weights = objective.gradient_weights();
+      switch (polished.status) {
+        case NewtonStatus::Converged:
+          finish(DynamicsStatus::Converged, "gradient below tolerance, at rest (end game: " +
+                                                std::to_string(polished.iterations) + " steps of infinite length)");
+          break;
+        case NewtonStatus::Interrupted:
+          finish(DynamicsStatus::Interrupted, "stop flag raised");
+          break;
+        case NewtonStatus::NonFinite:
+          finish(DynamicsStatus::NonFinite, "end game: " + polished.reason);
+          break;
+        default:
+          finish(DynamicsStatus::IntegratorFailed, "end game: " + polished.reason);
+          break;
+      }
+    }
   }
 
   result.time = report.time;
@@ -268,8 +507,8 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
   result.kinetic_energy = kinetic(y);
   if (result.status != DynamicsStatus::NonFinite)
     result.stable = is_positive_definite(system.cholesky(), objective.hessian());
-  result.factorizations =
-      estimator.stats().factorizations + system.cholesky().stats().factorizations;
+  result.factorizations = estimator.stats().factorizations +
+                          system.cholesky().stats().factorizations + extra_factorizations;
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }

@@ -1,5 +1,5 @@
 // Statics by damped dynamics with IDA: integrate
-//   M q'' + C q' + grad E(q) = 0   (second order; C = c M)
+//   M q'' + C q' + grad E(q) = 0   (second order)
 // or the overdamped C q' + grad E(q) = 0 (first order) from rest until the
 // motion has died out, with IDA's adaptive BDF steps (which grow as the
 // motion decays, approaching Newton steps: pseudo-transient continuation,
@@ -7,20 +7,29 @@
 // it settles in stable minima where Newton may stop at a saddle; from an
 // exactly symmetric start it can still stay on a symmetric saddle.
 //
+// Damping (DampingModel): by default Rayleigh, C = b (H_0 + mu M) with H_0
+// the Hessian at the start: every mode of H_0 stiffer than the slowest is
+// overdamped and decays at about the slowest mode's rate, so the stiff
+// modes cost no small steps (mass-proportional damping C = c M leaves them
+// ringing). b and mu come from the lowest eigenvalues (inverse iteration,
+// mass_and_damping.hpp); near a saddle mu makes H_0 + mu M positive
+// definite. The alternative C = c M is kept (DampingModel::MassProportional).
+//
 // Layout and linear algebra: dynamics_system.hpp (Schur complement onto
-// the n x n symmetric K = H + (c_j^2 + c c_j) M, factorized by CHOLMOD).
-// Masses and the automatic damping: mass_and_damping.hpp.
+// the n x n symmetric K = H + (c_j^2 + a c_j) M + b c_j S, factorized by
+// CHOLMOD).
 //
 // Stepping: IDA_ONE_STEP; after every step the objective is moved to the
 // step's q and the stop criterion is tested:
 //   gradient measure <= gradient_tolerance  and
 //   kinetic energy <= kinetic_tolerance * max(|E_0 - E|, |E|)
-// (second order; the first-order form has no kinetic energy). Every
-// rebase_interval steps, objective.rebase(&v) re-expresses the unknowns and
-// IDA restarts (IDAReInit) from the transformed state with consistent
-// derivatives (q' = v, v' = -c v - M^-1 grad E) and the last step size;
-// when the rebase changed neither q nor v, IDA simply continues (a restart
-// drops IDA back to order 1).
+// (second order; the first-order form has no kinetic energy). When the
+// unknowns have moved far enough (rebase_distance), objective.rebase(&v)
+// re-expresses them and IDA restarts (IDAReInit) from the transformed state
+// with consistent derivatives (q' = v, v' = -M^-1 (C v + grad E)); when the
+// rebase changed neither q nor v, IDA simply continues (a restart drops IDA
+// back to order 1). The end game (endgame_steps) takes the last steps at
+// infinite length, i.e. as Newton steps with the energy line search.
 #pragma once
 
 #include <atomic>
@@ -38,18 +47,65 @@ enum class MassModel {
   Fictitious,  // row sums of |H| at the start (dynamic relaxation)
 };
 
+enum class DampingModel {
+  MassProportional,  // C = c M
+  Rayleigh,          // C = a M + b (H_r + s M), see mass_and_damping.hpp
+};
+
 struct DynamicsOptions {
   DynamicsForm form = DynamicsForm::SecondOrder;
   MassModel mass = MassModel::Physical;
-  // c in C = c M; <= 0 selects 2 sqrt(|lambda_min|) of (H, M) at the start
-  // (critical damping of the slowest mode; mass_and_damping.hpp). In the
-  // first-order form c only rescales time.
+  DampingModel damping_model = DampingModel::Rayleigh;
+  // c in C = c M (mass-proportional), a in C = a M + b (H_r + s M) (Rayleigh);
+  // <= 0: automatic (mass_and_damping.hpp).
   double damping = 0.0;
   int damping_iterations = 20;       // inverse iterations for lambda_min
   double gradient_tolerance = 2e-8;  // as NewtonOptions
   double kinetic_tolerance = 1e-12;  // relative to the energy scale, see above
   long max_steps = 100000;
-  int rebase_interval = 20;  // steps between rebases (>= 1)
+  // Rebases (source-frame updates, omega folds: objective.rebase) restart
+  // IDA at order 1, so they are made only when the unknowns have moved far
+  // enough to need them: when some unknown moved more than rebase_distance
+  // (in units of unknown_scales: radians for angles, the length scale of
+  // the gradient weights for positions) since the last one, or every
+  // rebase_interval steps (0: never by count). Rebasing every 20 steps
+  // made the test linkages 3-5x slower than rebasing by distance.
+  int rebase_interval = 0;
+  double rebase_distance = 0.3;
+  // Damping refresh (Rayleigh): every refresh_damping rebases (0: never),
+  // or when the unknowns moved more than refresh_distance (0: never), the
+  // stiffness part of C is recomputed from the current Hessian and blended
+  // in over blend_steps steps. Off by default: the Hessian of the start
+  // damps well enough on the test linkages, and each refresh costs a
+  // factorization.
+  int refresh_damping = 0;
+  double refresh_distance = 0.0;
+  double blend_steps = 5.0;
+  // First step after a restart, as a multiple of the last step (0: IDA's
+  // own estimate from the derivatives, which copes with the jump of the
+  // damping force that re-expressed unknowns cause).
+  double restart_step = 0.0;
+  // Near a saddle (Rayleigh, second order): mu = unstable_margin times the
+  // most negative eigenvalue, so that H + mu M is positive definite.
+  double unstable_margin = 1.1;
+  // An (almost) zero mode at the start, such as a joint free to open, is
+  // damped by b mu M with mu >= zero_mode_fraction times the lowest stable
+  // eigenvalue; without it, such a mode moves without bound at first.
+  double zero_mode_fraction = 1e-2;
+  // End game: once IDA's step exceeds endgame_steps time constants (1 /
+  // rate of the slowest damped mode) and the Hessian is positive definite,
+  // the remaining steps are taken with infinite length: backward Euler then
+  // is a Newton step, globalized by the energy line search (newton.hpp),
+  // which only lowers the energy. 0: never (IDA to the end).
+  double endgame_steps = 1e3;
+  // IDA: velocities excluded from the error test (IDASetId/SuppressAlg).
+  bool suppress_velocity = false;
+  int max_order = 5;      // largest BDF order (at most 2 in the first-order form)
+  double eta_max = 2.0;   // largest step growth factor
+  // Absolute tolerances per unknown scaled by unknown_scales (the
+  // gradient weights), so that positions and angles get their own units.
+  bool scaled_tolerances = true;
+  double mode_floor = 1e-12;  // eigenvalues below mode_floor trace(H)/trace(M) count as zero
   // IDA local error control: rtol, and atol for q (atol for v is atol c/2).
   // Statics needs no accurate trajectory, only a decreasing E + K and the
   // right basin: on the test toys rtol 1e-3 takes 3-15x fewer steps than
@@ -81,6 +137,7 @@ struct DynamicsReport {
   double energy = 0.0;          // E(q)
   double kinetic_energy = 0.0;  // v'Mv/2 (0 in the first-order form)
   double gradient_measure = 0.0;
+  int order = 0;  // BDF order of the last step
 };
 
 struct DynamicsCallbacks {
@@ -97,9 +154,15 @@ struct DynamicsResult {
   double energy = 0.0;
   double kinetic_energy = 0.0;
   bool stable = false;      // unshifted LL^T of the final Hessian succeeded
-  double damping = 0.0;     // c used
+  double damping = 0.0;     // c (or a) used
+  double stiffness_damping = 0.0;  // b used (0 for mass-proportional damping)
+  long residual_evaluations = 0;
+  long error_test_failures = 0;
+  long convergence_failures = 0;
   long factorizations = 0;  // numeric Cholesky factorizations (incl. estimate and check)
   long rebases = 0;
+  long refreshes = 0;      // damping refreshes
+  long endgame_steps = 0;  // steps of infinite length (Newton) at the end
   double seconds = 0.0;
   bool converged() const { return status == DynamicsStatus::Converged; }
 };

@@ -1,8 +1,13 @@
 // What IDA sees of statics by damped dynamics.
 //
+// Damping C = a M + b S: M the lumped (diagonal) mass, S a symmetric
+// positive semidefinite "stiffness" matrix with the Hessian's sparsity
+// pattern (or none: b = 0, mass-proportional damping); see
+// mass_and_damping.hpp for the choice of a, b and S.
+//
 // Second-order form, 2n unknowns y = [q; v]:
 //   r1 = q' - v
-//   r2 = M v' + C v + grad E(q),          C = c M (M lumped, diagonal)
+//   r2 = M v' + C v + grad E(q)
 // First-order (overdamped) form, n unknowns y = q:
 //   r  = C q' + grad E(q)
 //
@@ -11,8 +16,8 @@
 //       [ H        c_j M + C ]
 // Solving J [dq; dv] = [b1; b2]: row 1 gives dv = c_j dq - b1; substituted
 // in row 2, H dq + (c_j M + C)(c_j dq - b1) = b2, so
-//   K dq = b2 + (c_j M + C) b1,   K = H + (c_j^2 + c c_j) M,
-// then dv = c_j dq - b1. First order: K = H + c c_j M directly.
+//   K dq = b2 + (c_j M + C) b1,   K = H + (c_j^2 + a c_j) M + b c_j S,
+// then dv = c_j dq - b1. First order: K = H + c_j C = H + a c_j M + b c_j S.
 //
 // Why a Schur complement and Cholesky rather than KLU on the 2n system: K
 // is symmetric with the pattern of H (plus its diagonal), so the Newton
@@ -25,6 +30,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 
 #include "cholesky_solver.hpp"
 #include "direct_linear_solver.hpp"
@@ -34,11 +40,23 @@ namespace xshell {
 
 enum class DynamicsForm { SecondOrder, FirstOrder };
 
+// C = mass_coefficient M + stiffness_coefficient S.
+struct Damping {
+  double mass_coefficient = 1.0;       // a >= 0, 1 / time
+  double stiffness_coefficient = 0.0;  // b >= 0, time
+  // S: n x n, symmetric, both triangles, with the pattern of the
+  // objective's Hessian (or a subset of it); ignored when b = 0. C must be
+  // positive semidefinite (positive definite for the first-order form).
+  Eigen::SparseMatrix<double> stiffness;
+  // Decay rate of the slowest motion, for the tolerances on velocities.
+  double rate = 1.0;  // 1 / time
+};
+
 class DynamicsSystem final : public DirectSolveBackend {
  public:
-  // mass: lumped, size n, positive; damping: c > 0.
+  // mass: lumped, size n, positive.
   DynamicsSystem(ObjectiveEvaluator& evaluator, DynamicsForm form, Eigen::VectorXd mass,
-                 double damping);
+                 Damping damping);
 
   Eigen::Index unknowns() const { return mass_.size(); }
   // IDA's system size: 2n (second order) or n.
@@ -47,32 +65,58 @@ class DynamicsSystem final : public DirectSolveBackend {
   }
   DynamicsForm form() const { return form_; }
   const Eigen::VectorXd& mass() const { return mass_; }
-  double damping() const { return damping_; }
+  // The damping in force once any blend has ended.
+  const Damping& damping() const { return blending_ ? to_ : from_; }
+
+  // Replaces the damping at once (the integrator must be restarted: the
+  // derivatives jump).
+  void set_damping(Damping damping);
+  // Moves C smoothly from its current value (at time start) to `target`
+  // over [start, start + duration]: C(t) = (1 - w) C_from + w C_to with w
+  // the smoothstep of the elapsed fraction, so that the dynamics change
+  // without a jump and the integrator needs no restart. Both ends being
+  // positive (semi)definite, so is every C(t).
+  void blend_damping(Damping target, double start, double duration);
+  // Ends a blend whose interval is over at time t; true while one is running.
+  bool update_blend(double t);
+
+  // C(t) x (size n).
+  Eigen::VectorXd damping_force(const Eigen::VectorXd& x, double t) const;
 
   // IDA callbacks; user_data is the DynamicsSystem.
   static int residual(realtype t, N_Vector y, N_Vector yp, N_Vector r, void* user_data);
-  // Stores c_j and moves the objective to q (J is the placeholder matrix).
+  // Stores t and c_j and moves the objective to q (J is the placeholder matrix).
   static int jacobian(realtype t, realtype c_j, N_Vector y, N_Vector yp, N_Vector r, SUNMatrix J,
                       void* user_data, N_Vector tmp1, N_Vector tmp2, N_Vector tmp3);
 
   int setup() override;
   int solve(const double* b, double* x) override;
 
-  // Derivatives consistent with y at the objective's current configuration
-  // (y's q part must be where the objective is): q' = v and
-  // v' = -c v - M^-1 grad E (second order), or q' = -(c M)^-1 grad E.
-  Eigen::VectorXd consistent_derivatives(const Eigen::VectorXd& y);
+  // Derivatives consistent with y at time t at the objective's current
+  // configuration (y's q part must be where the objective is): q' = v and
+  // v' = -M^-1 (C v + grad E) (second order), or q' = -C^-1 grad E (first
+  // order; factorizes C when S is used). Throws std::runtime_error if C
+  // cannot be factorized.
+  Eigen::VectorXd consistent_derivatives(const Eigen::VectorXd& y, double t);
 
   CholeskySolver& cholesky() { return cholesky_; }
   bool last_setup_failed() const { return setup_failed_; }
 
  private:
+  double weight(double t) const;  // w of the blend at t (0 without one)
+  // a(t) and the stiffness part of C(t) added to `out` scaled by s.
+  double mass_coefficient(double t) const;
+  void add_stiffness(double t, double s, Eigen::SparseMatrix<double>& out) const;
+
   ObjectiveEvaluator& evaluator_;
   DynamicsForm form_;
   Eigen::VectorXd mass_;
-  double damping_;
-  double cj_ = 0.0;        // c_j of the last Jacobian call
-  double setup_cj_ = 0.0;  // c_j of the factorization in cholesky_
+  Damping from_, to_;
+  bool blending_ = false;
+  double blend_start_ = 0.0, blend_end_ = 0.0;
+  double cj_ = 0.0, jacobian_t_ = 0.0;  // of the last Jacobian call
+  double setup_cj_ = 0.0, setup_t_ = 0.0;  // of the factorization in cholesky_
+  Eigen::SparseMatrix<double> work_;       // H + c_j (stiffness part of C)
   CholeskySolver cholesky_;
   bool setup_failed_ = false;
 };

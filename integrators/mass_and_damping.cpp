@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 namespace xshell {
 
@@ -21,6 +22,8 @@ LowestMode estimate_lowest_mode(CholeskySolver& solver, const Eigen::SparseMatri
   LowestMode mode;
   const ShiftedFactorization f = factorize_with_shift(solver, H, mass, shift);
   mode.shifted = f.shifted;
+  mode.shift = f.shift;
+  mode.factorizations = f.factorizations;
   if (f.status != FactorizationStatus::PositiveDefinite) return mode;
 
   // A fixed pseudo-random start: not orthogonal to the lowest mode in practice.
@@ -37,7 +40,72 @@ LowestMode estimate_lowest_mode(CholeskySolver& solver, const Eigen::SparseMatri
   }
   mode.eigenvalue = x.dot(H * x) / x.dot(mass.cwiseProduct(x));
   mode.ok = std::isfinite(mode.eigenvalue);
+  mode.vector = std::move(x);
   return mode;
+}
+
+ModeEstimate estimate_modes(CholeskySolver& solver, const Eigen::SparseMatrix<double>& H,
+                            const Eigen::VectorXd& mass, int iterations, const ShiftOptions& shift,
+                            int max_unstable, const ModeEstimate* warm) {
+  ModeEstimate estimate;
+  LowestMode& mode = estimate.lowest;
+  const ShiftedFactorization f = factorize_with_shift(solver, H, mass, shift);
+  mode.shifted = f.shifted;
+  mode.shift = f.shift;
+  mode.factorizations = f.factorizations;
+  estimate.certified_shift = f.shift;
+  if (f.status != FactorizationStatus::PositiveDefinite) return estimate;
+
+  auto m_dot = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    return a.dot(mass.cwiseProduct(b));
+  };
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  std::vector<Eigen::VectorXd> found;  // unstable modes, M-orthonormal
+  auto iterate = [&](LowestMode& m, const Eigen::VectorXd* start) {
+    Eigen::VectorXd x(H.rows());
+    if (start != nullptr && start->size() == x.size()) {
+      x = *start;
+    } else {
+      for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = uniform(rng);
+    }
+    auto project = [&](Eigen::VectorXd& y) {
+      for (const Eigen::VectorXd& u : found) y -= m_dot(u, y) * u;
+      y /= std::sqrt(m_dot(y, y));
+    };
+    project(x);
+    for (int k = 0; k < iterations; ++k) {
+      x = solver.solve(Eigen::VectorXd(mass.cwiseProduct(x)));
+      project(x);
+      ++m.iterations;
+    }
+    m.eigenvalue = x.dot(H * x);
+    m.ok = std::isfinite(m.eigenvalue);
+    m.vector = std::move(x);
+  };
+  iterate(mode, warm != nullptr && warm->lowest.ok ? &warm->lowest.vector : nullptr);
+  if (!mode.ok || mode.eigenvalue > 0.0) {
+    estimate.stable = mode;
+    return estimate;
+  }
+  found.push_back(mode.vector);
+  estimate.unstable_modes = 1;
+  const Eigen::VectorXd* start = warm != nullptr && warm->stable.ok ? &warm->stable.vector : nullptr;
+  for (int k = 1; k <= max_unstable; ++k) {
+    LowestMode next;
+    next.shifted = true;
+    next.shift = f.shift;
+    iterate(next, start);
+    start = nullptr;
+    if (!next.ok) break;
+    if (next.eigenvalue > 0.0) {
+      estimate.stable = std::move(next);
+      break;
+    }
+    found.push_back(next.vector);
+    ++estimate.unstable_modes;
+  }
+  return estimate;
 }
 
 double automatic_damping(const LowestMode& mode, const Eigen::SparseMatrix<double>& H,

@@ -25,8 +25,11 @@ Eigen::VectorXd fictitious_mass(const Eigen::SparseMatrix<double>& H, double flo
 struct LowestMode {
   double eigenvalue = 0.0;  // Rayleigh quotient x'Hx / x'Mx of the last iterate
   bool shifted = false;     // H was not positive definite (inverse iteration on H + s M)
+  double shift = 0.0;       // s (0 when H is positive definite)
   int iterations = 0;
-  bool ok = false;  // false if no factorization could be made
+  int factorizations = 0;  // numeric factorizations made
+  bool ok = false;         // false if no factorization could be made
+  Eigen::VectorXd vector;  // the last iterate, x'Mx = 1
 };
 
 // Estimates the lowest eigenvalue of H x = lambda M x by `iterations` steps
@@ -37,6 +40,21 @@ struct LowestMode {
 LowestMode estimate_lowest_mode(CholeskySolver& solver, const Eigen::SparseMatrix<double>& H,
                                 const Eigen::VectorXd& mass, int iterations = 20,
                                 const ShiftOptions& shift = {});
+
+// The lowest mode and, when it is unstable (negative), also the lowest
+// stable (positive) one: inverse iteration with the same factorization,
+// M-orthogonal to the unstable modes found before (at most max_unstable of
+// them). `warm`: a previous estimate whose vectors start the iterations.
+struct ModeEstimate {
+  LowestMode lowest;
+  LowestMode stable;      // == lowest when that is stable; ok = false if not found
+  int unstable_modes = 0;  // negative eigenvalues found
+  double certified_shift = 0.0;  // s with H + s M positive definite (0 if H is)
+};
+ModeEstimate estimate_modes(CholeskySolver& solver, const Eigen::SparseMatrix<double>& H,
+                            const Eigen::VectorXd& mass, int iterations = 20,
+                            const ShiftOptions& shift = {}, int max_unstable = 4,
+                            const ModeEstimate* warm = nullptr);
 
 // c = 2 sqrt(|lambda_min|) (critical damping of the slowest mode; near a
 // saddle, |lambda_min| is the growth rate scale of the unstable mode),

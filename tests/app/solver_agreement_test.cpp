@@ -66,3 +66,20 @@ TEST_CASE("relax: kinetic damping reaches Newton's equilibrium of the sample") {
   CHECK(kinetic["history"].size() < kinetic["iterations"].get<size_t>() / 10);
   check_same_equilibrium(newton, kinetic);
 }
+
+TEST_CASE("relax: damped dynamics reaches Newton's equilibrium of the sample, in both forms") {
+  const fs::path dir = temporary_directory("agreement_dynamics");
+  const nlohmann::json newton = solve_sample(dir, "newton");
+  const nlohmann::json second = solve_sample(dir, "dynamics");
+  CHECK(second["simulated_time"].get<double>() > 0.0);
+  check_same_equilibrium(newton, second);
+  // The overdamped flow, through the configuration.
+  write_text(dir / "first.json",
+             sample_config(dir / "first", R"(, "solver": {"method": "dynamics", "first_order": true, "gradient_tolerance": 1e-8})"));
+  const CommandResult r = run_xshell("relax first.json --quiet", dir);
+  CAPTURE(r.errors);
+  REQUIRE(r.status == 0);
+  const nlohmann::json first = read_json(dir / "first" / "summary.json");
+  CHECK(first["converged"] == true);
+  check_same_equilibrium(newton, first);
+}
