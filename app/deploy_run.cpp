@@ -67,6 +67,10 @@ const char* status_name(DeploymentStatus s) {
 void prepare_deployment(const Config& config, std::optional<LinkageProblem>& problem,
                         StaticsSetup statics) {
   if (!config.deployment) return;
+  if (config.joints != JointModel::Rotation)
+    throw InputError(config.source +
+                     ": deployment: needs \"joints\": \"rotation\" (edge-vector joints have no "
+                     "opening-angle unknown to drive)");
   const Deployment& d = *config.deployment;
   if (d.target == DeploymentTarget::AverageOpeningAngle) {
     try {

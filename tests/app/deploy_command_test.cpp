@@ -215,3 +215,15 @@ TEST_CASE("relax: a deployment with kinetic damping is refused, not ignored") {
   CHECK(r.errors.find("deployment: not available with solver.method \"kinetic-damping\"") != std::string::npos);
   CHECK(!fs::exists(dir / "out" / "summary.json"));
 }
+
+TEST_CASE("relax: a deployment with edge-vector joints is refused, not run on the wrong unknowns") {
+  const fs::path dir = temporary_directory("deploy-edge-vectors");
+  write_text(dir / "dome.obj", dome_obj(true));
+  std::string config = deploy_config(R"({"average_opening_angle": 1.9, "steps": 2})");
+  config.insert(config.find('{') + 1, R"("joints": "edge_vectors",)");
+  write_text(dir / "run.json", config);
+  const CommandResult r = run_xshell("relax run.json", dir);
+  CAPTURE(r.errors);
+  CHECK(r.status == 2);
+  CHECK(r.errors.find("deployment: needs \"joints\": \"rotation\"") != std::string::npos);
+}
