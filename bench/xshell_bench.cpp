@@ -11,11 +11,15 @@
 //   (CholeskySolver, symbolic analysis reused), the whole Newton iteration
 //   (median over the iterations of a solve, from NewtonReport::seconds),
 // and the solve itself (Newton to gradient tolerance 1e-6): iterations and
-// time. Each case runs in a child process, so that its peak memory
-// (getrusage) is its own.
+// time. With --solvers, the same relaxation also by damped dynamics (IDA,
+// second order, the defaults of `xshell relax --solver dynamics`) and by
+// kinetic damping (at most --kinetic-limit iterations): steps or
+// iterations, wall time, and the ratio to Newton's. Each case runs in a
+// child process, so that its peak memory (getrusage) is its own.
 //
 //   xshell_bench [--quick] [--reps N] [--graphs all|none|NAME,...] [--subdivisions 8,10]
-//                [--grids 4,8,14,25,44] [--no-solve] [--csv FILE] [--data DIR]
+//                [--grids 4,8,14,25,44] [--no-solve] [--solvers] [--kinetic-limit N]
+//                [--csv FILE] [--data DIR]
 #include <CLI/CLI.hpp>
 #include <sys/resource.h>
 #include <time.h>
@@ -39,6 +43,8 @@
 #endif
 
 #include "integrators/cholesky_solver.hpp"
+#include "integrators/dynamics.hpp"
+#include "integrators/kinetic_damping.hpp"
 #include "integrators/linkage_objective.hpp"
 #include "integrators/newton.hpp"
 #include "io/obj_reader.hpp"
@@ -71,13 +77,26 @@ struct BenchResult {
   double solve_s = NAN, gradient_measure = NAN;
   std::string status = "skipped";
   double peak_rss_mb = NAN;
+  // --solvers: the same relaxation by damped dynamics and kinetic damping.
+  long dynamics_steps = -1, kinetic_iterations = -1;
+  double dynamics_s = NAN, kinetic_s = NAN;
+  std::string dynamics_status = "skipped", kinetic_status = "skipped";
+};
+
+// What run_case measures besides the factorization costs.
+struct BenchSettings {
+  int reps = 5;
+  bool solve = true;
+  bool solvers = false;
+  long kinetic_limit = 200000;
 };
 
 const char* kColumns =
     "case,kind,subdivisions,gravity,threads,unknowns,free_unknowns,hessian_nonzeros,energy_gradient_ms,"
     "hessian_ms,factorization_ms,iteration_ms,factorizations_per_iteration,iteration_over_factorizations,"
     "newton_iterations,solve_s,status,gradient_measure,peak_rss_mb,hessian_cpu_ms,factorization_cpu_ms,"
-    "iteration_cpu_ms,iteration_over_factorizations_cpu";
+    "iteration_cpu_ms,iteration_over_factorizations_cpu,dynamics_steps,dynamics_s,dynamics_status,"
+    "kinetic_iterations,kinetic_s,kinetic_status";
 
 std::string to_csv(const BenchResult& r) {
   std::ostringstream o;
@@ -87,7 +106,9 @@ std::string to_csv(const BenchResult& r) {
     << r.hessian_ms << ',' << r.factorization_ms << ',' << r.iteration_ms << ',' << r.factorizations_per_iteration
     << ',' << r.iteration_over_factorizations << ',' << r.iterations << ',' << r.solve_s << ',' << r.status << ','
     << r.gradient_measure << ',' << r.peak_rss_mb << ',' << r.hessian_cpu_ms << ',' << r.factorization_cpu_ms << ','
-    << r.iteration_cpu_ms << ',' << r.iteration_over_factorizations_cpu;
+    << r.iteration_cpu_ms << ',' << r.iteration_over_factorizations_cpu << ',' << r.dynamics_steps << ','
+    << r.dynamics_s << ',' << r.dynamics_status << ',' << r.kinetic_iterations << ',' << r.kinetic_s << ','
+    << r.kinetic_status;
   return o.str();
 }
 
@@ -96,7 +117,7 @@ BenchResult from_csv(const std::string& line) {
   std::stringstream in(line);
   for (std::string item; std::getline(in, item, ',');) f.push_back(item);
   BenchResult r;
-  if (f.size() != 23) {
+  if (f.size() != 29) {
     r.status = "failed";
     return r;
   }
@@ -124,6 +145,12 @@ BenchResult from_csv(const std::string& line) {
   r.factorization_cpu_ms = d(f[20]);
   r.iteration_cpu_ms = d(f[21]);
   r.iteration_over_factorizations_cpu = d(f[22]);
+  r.dynamics_steps = std::stol(f[23]);
+  r.dynamics_s = d(f[24]);
+  r.dynamics_status = f[25];
+  r.kinetic_iterations = std::stol(f[26]);
+  r.kinetic_s = d(f[27]);
+  r.kinetic_status = f[28];
   return r;
 }
 
@@ -225,7 +252,36 @@ double factorization_ms(const Eigen::SparseMatrix<double>& H, const Eigen::Vecto
   return median_ms(reps, [&] { solver.factorize(H, shift_ptr); }, cpu_ms);
 }
 
-BenchResult run_case(const BenchCase& c, int reps, bool solve) {
+// The relaxation of case c by damped dynamics and by kinetic damping, each
+// from the flat start, to Newton's tolerance.
+void run_other_solvers(const BenchCase& c, const BenchSettings& settings, BenchResult& r) {
+  {
+    LinkageProblem problem = make_problem(c);
+    LinkageObjective objective(problem);
+    DynamicsOptions options;
+    options.gradient_tolerance = 1e-6;
+    options.max_steps = 20000;
+    const DynamicsResult result = solve_dynamics(objective, options);
+    r.dynamics_steps = result.steps;
+    r.dynamics_s = result.seconds;
+    r.dynamics_status = result.converged() ? "converged" : "failed";
+  }
+  {
+    LinkageProblem problem = make_problem(c);
+    LinkageObjective objective(problem);
+    KineticDampingOptions options;
+    options.gradient_tolerance = 1e-6;
+    options.max_iterations = settings.kinetic_limit;
+    const KineticDampingResult result = solve_kinetic_damping(objective, options);
+    r.kinetic_iterations = result.iterations;
+    r.kinetic_s = result.seconds;
+    r.kinetic_status = result.converged() ? "converged" : "failed";
+  }
+}
+
+BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
+  const int reps = settings.reps;
+  const bool solve = settings.solve;
   BenchResult r;
   r.name = c.name;
   r.kind = c.kind;
@@ -281,6 +337,7 @@ BenchResult run_case(const BenchCase& c, int reps, bool solve) {
       r.iteration_cpu_ms = 1e3 * median(cpu);
       r.iteration_over_factorizations_cpu = 1e3 * total_cpu / (double(factorizations) * r.factorization_cpu_ms);
     }
+    if (settings.solvers) run_other_solvers(c, settings, r);
   } else {
     r.status = "not_solved";
   }
@@ -291,7 +348,7 @@ BenchResult run_case(const BenchCase& c, int reps, bool solve) {
 }
 
 // Runs one case in a child process; its result comes back as a CSV line.
-BenchResult run_isolated(const BenchCase& c, int reps, bool solve) {
+BenchResult run_isolated(const BenchCase& c, const BenchSettings& settings) {
   int fd[2];
   if (pipe(fd) != 0) throw std::runtime_error("pipe failed");
   std::fflush(nullptr);
@@ -301,7 +358,7 @@ BenchResult run_isolated(const BenchCase& c, int reps, bool solve) {
     close(fd[0]);
     std::string line;
     try {
-      line = to_csv(run_case(c, reps, solve)) + "\n";
+      line = to_csv(run_case(c, settings)) + "\n";
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s: %s\n", c.name.c_str(), e.what());
       line = "error\n";
@@ -375,7 +432,8 @@ int main(int argc, char** argv) {
     execv("/proc/self/exe", argv);
   }
   CLI::App app{"xshell_bench: cost of Newton iterations, assembly and factorization"};
-  bool quick = false, no_solve = false;
+  bool quick = false, no_solve = false, solvers = false;
+  long kinetic_limit = 200000;
   int reps = 5;
   std::string graphs = "designs", subdivisions = "8,10", grids = "4,8,14,25,44", csv = "xshell_bench.csv";
   std::string data = std::string(XSHELL_SOURCE_DIR) + "/../shared/data/elasticrods";
@@ -387,6 +445,8 @@ int main(int argc, char** argv) {
   app.add_option("--subdivisions", subdivisions, "subdivisions for the graphs, comma-separated");
   app.add_option("--grids", grids, "grid sizes (crossings per side), comma-separated; empty for none");
   app.add_flag("--no-solve", no_solve, "skip the Newton solves");
+  app.add_flag("--solvers", solvers, "also relax by damped dynamics and kinetic damping, with ratios to Newton");
+  app.add_option("--kinetic-limit", kinetic_limit, "iteration limit of kinetic damping")->check(CLI::PositiveNumber);
   app.add_option("--csv", csv, "CSV file to write");
   app.add_option("--data", data, "folder of the real linkage graphs");
   CLI11_PARSE(app, argc, argv);
@@ -454,8 +514,9 @@ int main(int argc, char** argv) {
   std::ofstream out(csv);
   out << kColumns << "\n";
   std::vector<BenchResult> results;
+  const BenchSettings settings{reps, !no_solve, solvers, kinetic_limit};
   for (const BenchCase& c : cases) {
-    BenchResult r = run_isolated(c, reps, !no_solve);
+    BenchResult r = run_isolated(c, settings);
     print_row(r);
     out << to_csv(r) << "\n";
     out.flush();
@@ -483,6 +544,16 @@ int main(int argc, char** argv) {
                 loglog_slope(n, factor));
     std::printf("the same in CPU time: iteration minus factorizations %.2f, Hessian %.2f, factorization %.2f\n",
                 loglog_slope(n, outside_cpu), loglog_slope(n, hessian_cpu), loglog_slope(n, factor_cpu));
+  }
+  if (solvers && !no_solve) {
+    std::printf("\nthe same relaxation by each solver (tolerance 1e-6): iterations or steps, seconds, ratio to Newton\n");
+    std::printf("%-24s %3s %2s %7s | %5s %8s | %6s %8s %6s %-9s | %7s %8s %7s %s\n", "case", "n_s", "g", "free",
+                "its", "newton", "steps", "dynamics", "ratio", "", "its", "kinetic", "ratio", "");
+    for (const BenchResult& r : results)
+      std::printf("%-24s %3d %2s %7ld | %5ld %8.3f | %6ld %8.3f %6.1f %-9s | %7ld %8.3f %7.1f %s\n", r.name.c_str(),
+                  r.subdivisions, r.gravity ? "g" : "-", r.free_unknowns, r.iterations, r.solve_s, r.dynamics_steps,
+                  r.dynamics_s, r.dynamics_s / r.solve_s, r.dynamics_status.c_str(), r.kinetic_iterations, r.kinetic_s,
+                  r.kinetic_s / r.solve_s, r.kinetic_status.c_str());
   }
   std::printf("wrote %s\n", csv.c_str());
   return 0;
