@@ -861,7 +861,7 @@ TEST_CASE("kinetic damping against Newton and damped dynamics: sphere_open from 
       1e-8, 1000, 400.0, {MassBound::RowSum});
 }
 
-TEST_CASE("kinetic damping against Newton: sphere_open from straight, scaled row sums" *
+TEST_CASE("kinetic damping against Newton: sphere_open from straight with scaled row sums" *
           doctest::test_suite("validation")) {
   const LineGraph graph = shared_graph("sphere_open.obj");
   if (graph.vertices.empty()) {

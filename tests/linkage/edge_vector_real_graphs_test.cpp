@@ -14,7 +14,7 @@
 
 using namespace xshell;
 
-TEST_CASE("Real graphs with edge-vector joints: near-parallel joints are refused, the rest build" *
+TEST_CASE("Real graphs with edge-vector joints: near-parallel joints are refused and the rest build" *
           doctest::test_suite("validation")) {
   const std::filesystem::path dir = XSHELL_SHARED_DATA_DIR;
   if (!std::filesystem::is_directory(dir)) {

@@ -10,7 +10,7 @@ using namespace xshell;
 
 // Builds a linkage from every graph of the reference implementation (when
 // ../shared/data/elasticrods is present) and reports its size.
-TEST_CASE("Every real linkage graph builds, with joints opening in (0, pi) and zero input energy" *
+TEST_CASE("Every real linkage graph builds with joints opening in (0 pi) and zero input energy" *
           doctest::test_suite("validation")) {
   const std::filesystem::path dir = XSHELL_SHARED_DATA_DIR;
   if (!std::filesystem::is_directory(dir)) {
