@@ -2,12 +2,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 
 #include "deploy_run.hpp"
+#include "engineering_outputs.hpp"
 #include "exit_status.hpp"
 #include "integrators/dynamics.hpp"
 #include "integrators/kinetic_damping.hpp"
@@ -23,6 +25,7 @@
 #include "io/vtk/linkage_snapshot.hpp"
 #include "io/vtk/vtk_series.hpp"
 #include "linkage/model_error.hpp"
+#include "linkage/rigid_motions.hpp"
 
 namespace xshell {
 
@@ -181,6 +184,20 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
   if (default_support >= 0)
     std::cerr << "xshell: no supports given: pinning position and orientation of vertex "
               << default_support << " (the joint nearest the centre)\n";
+  // Rigid motions that no support holds make Newton's system singular
+  // unless the loads hold them: said now, and in the reason of a failure.
+  const std::vector<RigidMotion> rigid_motions =
+      setup.statics.supports.empty() ? std::vector<RigidMotion>()
+                                     : free_rigid_motions(setup.statics.supports, problem->vertex_positions());
+  const std::string free_motions = describe(rigid_motions, setup.origin);
+  // Dead loads never hold a translation: the Hessian is then singular, and
+  // no equilibrium is stable, whatever a factorization said at round-off.
+  const bool free_translation =
+      std::any_of(rigid_motions.begin(), rigid_motions.end(),
+                  [](const RigidMotion& m) { return m.kind == RigidMotion::Kind::Translation; });
+  if (!free_motions.empty())
+    std::cerr << "xshell: warning: the supports leave rigid motions free (" << free_motions
+              << "): only the loads can hold them\n";
 
   const bool progress = progress_enabled(args, config);
   RunSummary summary;
@@ -309,12 +326,28 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
   if (interrupted) {
     summary.status = "interrupted";
     summary.reason = "interrupted by a signal";
+  } else if (!summary.converged && !free_motions.empty()) {
+    summary.reason = "singular system: the supports leave rigid motions free (" + free_motions + "); " +
+                     summary.reason;
   }
+  if (free_translation) summary.stable = false;
+  for (char& c : summary.reason)  // one line, whatever a library said
+    if (c == '\n' || c == '\r') c = ' ';
   summary.interrupted = interrupted;
   summary.energy = problem->energy();
   summary.vertices = problem->vertex_positions();
   for (auto& v : summary.vertices) v += setup.origin;
   summary.opening_angles = problem->opening_angles();
+  if (summary.converged && !interrupted) {
+    try {
+      write_engineering_results(*problem, config, setup.origin, dir, summary);
+    } catch (const OutputError& e) {
+      std::cerr << "xshell: error: " << e.what() << "\n";
+      return kExitOutputFailed;
+    } catch (const std::exception& e) {
+      std::cerr << "xshell: warning: no engineering results: " << e.what() << "\n";
+    }
+  }
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const bool failed_before_finish = outputs->failed();
   outputs->finish(summary);

@@ -112,30 +112,77 @@ std::string file_path(const JsonField& f, const std::string& base_dir) {
 // ---------------------------------------------------------------------------
 // Sections
 
-CrossSectionConfig read_cross_section(const JsonField& f) {
+// With a `base` (an element of "rods"), every key is optional and inherited
+// from it; without, width and height are required.
+CrossSectionConfig read_cross_section(const JsonField& f, const CrossSectionConfig* base) {
   f.check_keys({"shape", "width", "height"});
-  CrossSectionConfig c;
+  CrossSectionConfig c = base ? *base : CrossSectionConfig{};
   if (auto shape = f.find("shape")) c.shape = shape->choice(kShapes);
-  c.width = positive(f.require("width"));
-  c.height = positive(f.require("height"));
+  if (auto width = base ? f.find("width") : f.require("width")) c.width = positive(*width);
+  if (auto height = base ? f.find("height") : f.require("height")) c.height = positive(*height);
   return c;
 }
 
-MaterialConfig read_material(const JsonField& f) {
+MaterialConfig read_material(const JsonField& f, const MaterialConfig* base) {
   f.check_keys({"young_modulus", "poisson_ratio", "density", "strength", "cross_section"});
-  MaterialConfig m;
-  m.young_modulus = positive(f.require("young_modulus"));
+  MaterialConfig m = base ? *base : MaterialConfig{};
+  if (auto e = base ? f.find("young_modulus") : f.require("young_modulus")) m.young_modulus = positive(*e);
   if (auto nu = f.find("poisson_ratio")) m.poisson_ratio = inside(*nu, -1, 0.5, "(-1, 0.5)");
   if (auto rho = f.find("density")) m.density = non_negative(*rho);
   if (auto strength = f.find("strength")) m.strength = positive(*strength);
-  m.cross_section = read_cross_section(f.require("cross_section"));
+  if (auto section = base ? f.find("cross_section") : f.require("cross_section"))
+    m.cross_section = read_cross_section(*section, base ? &base->cross_section : nullptr);
   return m;
+}
+
+std::vector<RodMaterial> read_rods(const JsonField& f, const MaterialConfig& base) {
+  std::vector<RodMaterial> rods;
+  for (const JsonField& item : f.elements()) {
+    item.check_keys({"rod", "edges", "vertices", "material"});
+    RodMaterial r;
+    const auto rod = item.find("rod");
+    const auto edges = item.find("edges");
+    const auto vertices = item.find("vertices");
+    if ((rod ? 1 : 0) + (edges ? 1 : 0) + (vertices ? 1 : 0) != 1)
+      item.fail("needs exactly one selector of \"rod\", \"edges\" and \"vertices\"");
+    if (rod) {
+      r.selector = RodSelector::Rod;
+      r.rod = rod->integer();
+      if (r.rod < 0) rod->fail("a rod index is 0-based and must be >= 0, got " + std::to_string(r.rod));
+    } else if (edges) {
+      r.selector = RodSelector::Edges;
+      for (const JsonField& edge : edges->elements()) {
+        const std::vector<JsonField> ends = edge.elements();
+        if (ends.size() != 2)
+          edge.fail("expected an edge [i, j] of two vertex indices, got an array of " +
+                    std::to_string(ends.size()));
+        const std::array<int, 2> e = {vertex_index(ends[0]), vertex_index(ends[1])};
+        for (const auto& earlier : r.edges)
+          if ((earlier[0] == e[0] && earlier[1] == e[1]) || (earlier[0] == e[1] && earlier[1] == e[0]))
+            edge.fail("edge [" + std::to_string(e[0]) + ", " + std::to_string(e[1]) + "] is listed twice");
+        r.edges.push_back(e);
+      }
+      if (r.edges.empty()) edges->fail("must list at least one edge [i, j]");
+    } else {
+      r.selector = RodSelector::Vertices;
+      for (const JsonField& vertex : vertices->elements()) {
+        const int v = vertex_index(vertex);
+        if (std::find(r.vertices.begin(), r.vertices.end(), v) != r.vertices.end())
+          vertex.fail("vertex " + std::to_string(v) + " is listed twice");
+        r.vertices.push_back(v);
+      }
+      if (r.vertices.empty()) vertices->fail("must list at least one vertex");
+    }
+    r.material = read_material(item.require("material"), &base);
+    rods.push_back(r);
+  }
+  return rods;
 }
 
 std::vector<Support> read_supports(const JsonField& f) {
   std::vector<Support> supports;
   for (const JsonField& item : f.elements()) {
-    item.check_keys({"vertex", "fix"});
+    item.check_keys({"vertex", "fix", "displacement"});
     Support s;
     s.vertex = vertex_index(item.require("vertex"));
     const JsonField fix = item.require("fix");
@@ -149,6 +196,20 @@ std::vector<Support> read_supports(const JsonField& f) {
       fix.fail(
           "must list at least one of \"position\", \"x\", \"y\", \"z\", "
           "\"orientation\", \"opening_angle\"");
+    if (auto displacement = item.find("displacement")) {
+      s.displacement = displacement->vector3();
+      const std::vector<JsonField> components = displacement->elements();
+      for (int c = 0; c < 3; ++c) {
+        const Fixed roller = c == 0 ? Fixed::X : c == 1 ? Fixed::Y : Fixed::Z;
+        const bool held = std::find(s.fix.begin(), s.fix.end(), Fixed::Position) != s.fix.end() ||
+                          std::find(s.fix.begin(), s.fix.end(), roller) != s.fix.end();
+        if (s.displacement[c] != 0.0 && !held)
+          components[c].fail("moves the " + name_of(roller, kFixed) +
+                             " component, which this support leaves free; only held components can be "
+                             "displaced: add \"position\" or \"" + name_of(roller, kFixed) +
+                             "\" to fix, or give 0");
+      }
+    }
     supports.push_back(s);
   }
   return supports;
@@ -245,7 +306,7 @@ Config parse_config(const std::string& text, const std::string& name, const std:
   const JsonField root(document, "", name);
   if (!document.is_object())
     root.fail("the configuration must be a JSON object { ... }, got " + root.describe());
-  root.check_keys({"linkage", "subdivisions", "rest_shape", "joints", "material", "supports",
+  root.check_keys({"linkage", "subdivisions", "rest_shape", "joints", "material", "rods", "supports",
                    "loads", "solver", "output", "deployment"});
   Config c;
   c.source = name;
@@ -253,7 +314,8 @@ Config parse_config(const std::string& text, const std::string& name, const std:
   if (auto n = root.find("subdivisions")) c.subdivisions = at_least(*n, 3);
   if (auto rest = root.find("rest_shape")) c.rest_shape = rest->choice(kRestShapes);
   if (auto joints = root.find("joints")) c.joints = joints->choice(kJointModels);
-  c.material = read_material(root.require("material"));
+  c.material = read_material(root.require("material"), nullptr);
+  if (auto rods = root.find("rods")) c.rods = read_rods(*rods, c.material);
   if (auto supports = root.find("supports")) c.supports = read_supports(*supports);
   if (auto loads = root.find("loads")) c.loads = read_loads(*loads);
   if (auto solver = root.find("solver")) c.solver = read_solver(*solver);
@@ -264,6 +326,9 @@ Config parse_config(const std::string& text, const std::string& name, const std:
 }
 
 Config read_config(const std::string& path) {
+  std::error_code ignored;  // a folder opens as a stream that fails only when read
+  if (std::filesystem::is_directory(path, ignored))
+    throw InputError("cannot open configuration file '" + path + "': it is a folder, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw InputError("cannot open configuration file '" + path + "': " + std::strerror(errno));
@@ -284,27 +349,50 @@ void check_vertices(const Config& config, const LineGraph& graph) {
     check(config.supports[i].vertex, "supports[" + std::to_string(i) + "].vertex");
   for (std::size_t i = 0; i < config.loads.forces.size(); ++i)
     check(config.loads.forces[i].vertex, "loads.forces[" + std::to_string(i) + "].vertex");
+  for (std::size_t i = 0; i < config.rods.size(); ++i) {
+    const std::string key = "rods[" + std::to_string(i) + "]";
+    for (std::size_t k = 0; k < config.rods[i].vertices.size(); ++k)
+      check(config.rods[i].vertices[k], key + ".vertices[" + std::to_string(k) + "]");
+    for (std::size_t k = 0; k < config.rods[i].edges.size(); ++k)
+      for (int m = 0; m < 2; ++m)
+        check(config.rods[i].edges[k][m], key + ".edges[" + std::to_string(k) + "][" + std::to_string(m) + "]");
+  }
   if (config.deployment)
     for (std::size_t i = 0; i < config.deployment->joint_angles.size(); ++i)
       check(config.deployment->joint_angles[i].vertex,
             "deployment.joint_angles[" + std::to_string(i) + "].vertex");
 }
 
-nlohmann::json to_json(const Config& c) {
-  nlohmann::json material = {{"young_modulus", c.material.young_modulus},
-                             {"poisson_ratio", c.material.poisson_ratio},
-                             {"density", c.material.density},
+namespace {
+nlohmann::json material_json(const MaterialConfig& m) {
+  nlohmann::json material = {{"young_modulus", m.young_modulus},
+                             {"poisson_ratio", m.poisson_ratio},
+                             {"density", m.density},
                              {"cross_section",
-                              {{"shape", name_of(c.material.cross_section.shape, kShapes)},
-                               {"width", c.material.cross_section.width},
-                               {"height", c.material.cross_section.height}}}};
-  if (c.material.strength) material["strength"] = *c.material.strength;
+                              {{"shape", name_of(m.cross_section.shape, kShapes)},
+                               {"width", m.cross_section.width},
+                               {"height", m.cross_section.height}}}};
+  if (m.strength) material["strength"] = *m.strength;
+  return material;
+}
+}  // namespace
+
+nlohmann::json to_json(const Config& c) {
+  const nlohmann::json material = material_json(c.material);
+  nlohmann::json rods = nlohmann::json::array();
+  for (const RodMaterial& r : c.rods) {
+    nlohmann::json item = {{"material", material_json(r.material)}};
+    if (r.selector == RodSelector::Rod) item["rod"] = r.rod;
+    if (r.selector == RodSelector::Edges) item["edges"] = r.edges;
+    if (r.selector == RodSelector::Vertices) item["vertices"] = r.vertices;
+    rods.push_back(item);
+  }
 
   nlohmann::json supports = nlohmann::json::array();
   for (const Support& s : c.supports) {
     nlohmann::json fix = nlohmann::json::array();
     for (Fixed f : s.fix) fix.push_back(name_of(f, kFixed));
-    supports.push_back({{"vertex", s.vertex}, {"fix", fix}});
+    supports.push_back({{"vertex", s.vertex}, {"fix", fix}, {"displacement", vector_json(s.displacement)}});
   }
   nlohmann::json forces = nlohmann::json::array();
   for (const PointForce& f : c.loads.forces)
@@ -317,6 +405,7 @@ nlohmann::json to_json(const Config& c) {
       {"rest_shape", name_of(c.rest_shape, kRestShapes)},
       {"joints", name_of(c.joints, kJointModels)},
       {"material", material},
+      {"rods", rods},
       {"supports", supports},
       {"loads", {{"gravity", vector_json(c.loads.gravity)}, {"forces", forces}}},
       {"solver",

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
@@ -75,7 +76,7 @@ enum class Fixed {
   OpeningAngle,  // "opening_angle": the angle between the joint's two rods
 };
 
-// "material.cross_section" (the same for every rod).
+// "material.cross_section" (every rod's, unless "rods" overrides it).
 struct CrossSectionConfig {
   SectionShape shape = SectionShape::Rectangle;  // "shape", default "rectangle"
   double width = 0;                                        // "width", > 0, required; length
@@ -95,6 +96,30 @@ struct MaterialConfig {
 struct Support {
   int vertex = 0;          // "vertex", >= 0, required; 0-based index into the linkage file
   std::vector<Fixed> fix;  // "fix", required: non-empty, no duplicates
+  Eigen::Vector3d displacement = Eigen::Vector3d::Zero();  // "displacement", [dx, dy, dz],
+                           // default [0, 0, 0]; length: the held position moves to input +
+                           // displacement. A non-zero component must be held by "position" or
+                           // by its roller "x", "y", "z" (rejected otherwise)
+};
+
+// An element of "rods" (default: none): a material and section for some full
+// rods, overriding the top-level "material". Exactly one selector:
+//   "rod": k, a full rod as the topology numbers them (the rod_id cell data of
+//     rods_*.vtp / stresses.vtp, the `rod` of summary.json's stresses);
+//   "edges": [[i, j], ...], graph edges by their two vertices (either order):
+//     the full rods that contain them (the whole rod, not only that segment);
+//   "vertices": [v, ...], every full rod through (or ending at) these vertices.
+// "material" takes the keys of the top-level "material", each optional and
+// inherited from it (in "cross_section" too, key by key). Where entries select
+// the same rod, the later entry wins.
+enum class RodSelector { Rod, Edges, Vertices };
+struct RodMaterial {
+  RodSelector selector = RodSelector::Rod;
+  int rod = 0;                            // "rod", >= 0
+  std::vector<std::array<int, 2>> edges;  // "edges": non-empty, vertex indices >= 0, no repeats
+  std::vector<int> vertices;              // "vertices": non-empty, >= 0, no repeats
+  MaterialConfig material;                // "material", required; stored resolved (inherited
+                                          // keys filled in)
 };
 
 // An element of "loads.forces".
@@ -163,6 +188,7 @@ struct Config {
   RestShape rest_shape = RestShape::Input;   // "rest_shape", default "input"
   JointModel joints = JointModel::Rotation;  // "joints", default "rotation"
   MaterialConfig material;                   // "material", required
+  std::vector<RodMaterial> rods;             // "rods", default none: per-rod materials
   std::vector<Support> supports;             // "supports", default none
   Loads loads;                               // "loads"
   SolverOptions solver;                      // "solver"
@@ -178,8 +204,9 @@ Config read_config(const std::string& path);
 // relative paths are joined to `base_dir` (left as they are when it is empty).
 Config parse_config(const std::string& text, const std::string& name, const std::string& base_dir);
 
-// Checks every vertex index of `config` against `graph`; throws InputError
-// naming the key (e.g. "supports[2].vertex") of the first out of range.
+// Checks every vertex index of `config` against `graph` (supports, forces,
+// deployment, the vertices and edges of "rods"); throws InputError naming the
+// key (e.g. "supports[2].vertex") of the first out of range.
 void check_vertices(const Config& config, const LineGraph& graph);
 
 // The resolved configuration with every default filled in, in the file's

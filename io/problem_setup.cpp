@@ -1,5 +1,7 @@
 #include "problem_setup.hpp"
 
+#include "input_error.hpp"
+
 namespace xshell {
 
 namespace {
@@ -16,8 +18,69 @@ SupportDof to_support(Fixed f) {
 }
 }  // namespace
 
+Material model_material(const MaterialConfig& m) {
+  Material out;
+  out.young_modulus = m.young_modulus;
+  out.poisson_ratio = m.poisson_ratio;
+  out.density = m.density;
+  out.strength = m.strength.value_or(0.0);
+  out.section = {m.cross_section.shape, m.cross_section.width, m.cross_section.height};
+  return out;
+}
+
+std::vector<Material> segment_materials(const Config& config, const LineGraph& graph,
+                                        const LinkageTopology& topology) {
+  const int num_rods = static_cast<int>(topology.rods.size());
+  std::vector<Material> rod_material(num_rods, model_material(config.material));
+  for (std::size_t i = 0; i < config.rods.size(); ++i) {
+    const RodMaterial& entry = config.rods[i];
+    const std::string key = config.source + ": rods[" + std::to_string(i) + "]";
+    std::vector<int> selected;
+    switch (entry.selector) {
+      case RodSelector::Rod:
+        if (entry.rod >= num_rods)
+          throw InputError(key + ".rod: rod " + std::to_string(entry.rod) + " is out of range; the linkage has " +
+                           std::to_string(num_rods) + " rods (0-based indices 0 to " +
+                           std::to_string(num_rods - 1) +
+                           ", numbered as the rod_id cell data of the output's rods_*.vtp)");
+        selected.push_back(entry.rod);
+        break;
+      case RodSelector::Edges:
+        for (std::size_t k = 0; k < entry.edges.size(); ++k) {
+          const auto [a, b] = entry.edges[k];
+          int found = -1;
+          for (std::size_t e = 0; e < graph.edges.size() && found < 0; ++e)
+            if ((graph.edges[e][0] == a && graph.edges[e][1] == b) || (graph.edges[e][0] == b && graph.edges[e][1] == a))
+              found = static_cast<int>(e);
+          if (found < 0)
+            throw InputError(key + ".edges[" + std::to_string(k) + "]: vertices " + std::to_string(a) + " and " +
+                             std::to_string(b) + " are not joined by an edge of the linkage");
+          selected.push_back(topology.segments[found].rod);
+        }
+        break;
+      case RodSelector::Vertices:
+        for (int v : entry.vertices)
+          for (const SegmentTopology& seg : topology.segments)
+            if (seg.vertex[0] == v || seg.vertex[1] == v) selected.push_back(seg.rod);
+        break;
+    }
+    for (int rod : selected) rod_material[rod] = model_material(entry.material);
+  }
+  std::vector<Material> out;
+  for (const SegmentTopology& seg : topology.segments) out.push_back(rod_material[seg.rod]);
+  return out;
+}
+
 ProblemSetup make_problem_setup(const Config& config, const LineGraph& graph) {
   check_vertices(config, graph);
+  // A linkage far beyond any machine's memory is refused here, with the key
+  // to change, rather than failing in an allocation (or the kernel's OOM killer).
+  const double rod_edges = static_cast<double>(graph.edges.size()) * config.subdivisions;
+  if (rod_edges > kMaxRodEdges)
+    throw InputError(config.source + ": subdivisions: " + std::to_string(config.subdivisions) + " x " +
+                     std::to_string(graph.edges.size()) + " segments makes " +
+                     std::to_string(static_cast<long long>(rod_edges)) + " rod edges; at most " +
+                     std::to_string(kMaxRodEdges) + " are supported");
   ProblemSetup setup;
   Eigen::Vector3d lo = graph.vertices.at(0), hi = lo;
   for (const auto& v : graph.vertices) {
@@ -32,14 +95,12 @@ ProblemSetup make_problem_setup(const Config& config, const LineGraph& graph) {
   setup.options.rest_shape = config.rest_shape;
   setup.options.joint_kind =
       config.joints == JointModel::EdgeVectors ? JointKind::EdgeVectors : JointKind::Rotation;
-  setup.options.material.young_modulus = config.material.young_modulus;
-  setup.options.material.poisson_ratio = config.material.poisson_ratio;
-  setup.options.material.density = config.material.density;
-  setup.options.material.section = {config.material.cross_section.shape, config.material.cross_section.width,
-                                    config.material.cross_section.height};
+  setup.options.material = model_material(config.material);
+  if (!config.rods.empty())
+    setup.options.segment_materials = segment_materials(config, setup.graph, build_topology(setup.graph));
 
   for (const Support& s : config.supports) {
-    VertexSupport vs{s.vertex, {}};
+    VertexSupport vs{s.vertex, {}, s.displacement};
     for (Fixed f : s.fix) vs.fix.push_back(to_support(f));
     setup.statics.supports.push_back(vs);
   }

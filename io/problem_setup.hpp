@@ -16,7 +16,23 @@ struct ProblemSetup {
   StaticsSetup statics;                             // forces, gravity and supports
 };
 
-// Throws InputError for vertex indices out of range.
+// Most rod edges (graph edges x subdivisions) a run may have: far above the
+// largest benchmark grid (1e5 unknowns) and any published design.
+constexpr long kMaxRodEdges = 2000000;
+
+// Throws InputError for vertex indices out of range, for more than
+// kMaxRodEdges rod edges and for "rods" entries that do not apply (see
+// segment_materials); ModelError when the graph is no linkage.
 ProblemSetup make_problem_setup(const Config& config, const LineGraph& graph);
+
+// The model's material of a configuration's material.
+Material model_material(const MaterialConfig& material);
+
+// Per segment (graph edge) of `topology`, its material: the top-level one,
+// overridden by the entries of config.rods in order (the later wins where
+// they select the same rod). Throws InputError naming the key for a rod
+// index out of range or an edge [i, j] that is not in `graph`.
+std::vector<Material> segment_materials(const Config& config, const LineGraph& graph,
+                                        const LinkageTopology& topology);
 
 }  // namespace xshell

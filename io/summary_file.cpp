@@ -56,6 +56,7 @@ nlohmann::json to_json(const RunSummary& s) {
                          {"table", d->table},
                          {"plot", d->plot ? json(*d->plot) : json(nullptr)}};
   }
+  for (const auto& [key, value] : s.engineering.items()) out[key] = value;
   return out;
 }
 

@@ -31,6 +31,8 @@
 //                     steps, all steps), start_average_angle, target_average_angle (null for
 //                     joint_angles), final_average_angle (radians), final_torque (dE/dA, energy
 //                     per radian), table ("deployment.csv"), plot ("deployment.png" or null)}
+//   reactions, stresses, joint_forces, lowest_eigenvalues, buckling_load_factor,
+//   stability_analysis   engineering results of the final state (engineering_json.hpp)
 //   configuration     the resolved configuration; version: the program's version
 #pragma once
 
@@ -87,6 +89,9 @@ struct RunSummary {
   std::optional<DeploymentSummary> deployment;  // runs with a "deployment" only
   nlohmann::json configuration;
   std::string version;
+  // Engineering results of the final state (engineering_json()): each key
+  // goes to the top level of summary.json. Empty when not computed.
+  nlohmann::json engineering = nlohmann::json::object();
 };
 
 nlohmann::json to_json(const RunSummary& summary);

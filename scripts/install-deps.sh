@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libsundials-dev libsuitesparse-dev libvtk9-dev
-  doctest-dev nlohmann-json3-dev libcli11-dev
+  doctest-dev nlohmann-json3-dev libcli11-dev libspectra-dev
   xvfb xauth
   clang libclang-rt-14-dev
   python3-matplotlib

@@ -38,6 +38,18 @@ void write_joints_file(const Snapshot& snapshot, const std::filesystem::path& pa
   point_data->AddArray(vector_array("normal", normals));
   point_data->AddArray(scalar_array("opening_angle", angles));
   point_data->AddArray(int_array("valence", valences));
+  bool with_forces = !snapshot.joints.empty();
+  std::vector<Eigen::Vector3d> force_a, force_b;
+  for (const JointSnapshot& joint : snapshot.joints) {
+    with_forces = with_forces && joint.pin_force_a && joint.pin_force_b;
+    if (!with_forces) break;
+    force_a.push_back(*joint.pin_force_a);
+    force_b.push_back(*joint.pin_force_b);
+  }
+  if (with_forces) {
+    point_data->AddArray(vector_array("pin_force_a", force_a));
+    point_data->AddArray(vector_array("pin_force_b", force_b));
+  }
   point_data->SetActiveVectors("normal");
   write_polydata(*data, path, options);
 }

@@ -5,6 +5,8 @@
 //               normal         3 x double  joint normal (unit)
 //               opening_angle  double      radians, in (0, pi)
 //               valence        int         number of segments at the joint
+//               pin_force_a    3 x double  force the pin applies to rod A (force unit),
+//               pin_force_b    3 x double  and to rod B; only when the snapshot has them
 #pragma once
 
 #include <filesystem>

@@ -43,15 +43,17 @@ void reverse_all(std::vector<T>& v) { std::reverse(v.begin(), v.end()); }
 Snapshot linkage_snapshot(const RodLinkage& linkage, const Eigen::Vector3d& origin, double time) {
   Snapshot snap;
   snap.time = time;
-  const Material& material = linkage.options().material;
-  SectionSnapshot section;
-  section.shape = material.section.shape == SectionShape::Rectangle ? SectionSnapshot::Shape::Rectangle
-                                                                    : SectionSnapshot::Shape::Ellipse;
-  section.width = material.section.width;
-  section.height = material.section.height;
-
   const auto& rods = linkage.topology().rods;
   for (size_t r = 0; r < rods.size(); ++r) {
+    // The rod's section: that of its first segment (sections are set per
+    // full rod by the configuration's "rods").
+    const Material& material =
+        rods[r].segments.empty() ? linkage.options().material : linkage.segment_material(rods[r].segments[0]);
+    SectionSnapshot section;
+    section.shape = material.section.shape == SectionShape::Rectangle ? SectionSnapshot::Shape::Rectangle
+                                                                      : SectionSnapshot::Shape::Ellipse;
+    section.width = material.section.width;
+    section.height = material.section.height;
     RodSnapshot out;
     out.rod_id = static_cast<int>(r);
     out.section = section;

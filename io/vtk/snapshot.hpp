@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,9 @@ struct JointSnapshot {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit; equals d2 of its terminal edges
   double opening_angle = 0.0;     // radians, in (0, pi)
   int valence = 0;
+  // Force the pin applies to rod A and to rod B (joint_forces.hpp), when
+  // computed (final state); written only when every joint has them.
+  std::optional<Eigen::Vector3d> pin_force_a, pin_force_b;
 };
 
 struct Snapshot {

@@ -28,8 +28,10 @@ RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
   if (n < kMinSubdivisions)
     throw ModelError("subdivisions must be at least " + std::to_string(kMinSubdivisions) + ", got " +
                      std::to_string(n));
-  const RodStiffness stiffness = xshell::stiffness(options.material);
   const int ns = static_cast<int>(topology_.segments.size());
+  if (!options.segment_materials.empty() && static_cast<int>(options.segment_materials.size()) != ns)
+    throw ModelError("segment materials: " + std::to_string(options.segment_materials.size()) +
+                     " given for " + std::to_string(ns) + " segments");
 
   // Uniform edge length that fills each segment, and the joints' terminal
   // edge lengths.
@@ -91,7 +93,7 @@ RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
     const Eigen::Vector3d start_d1 =
         seg.joint[0] >= 0 ? Eigen::Vector3d(joints_[seg.joint[0]].normal().cross(nodes[1] - nodes[0]))
                           : Eigen::Vector3d::Zero();
-    ElasticRod rod(nodes, stiffness, seg.joint[0] >= 0 ? &start_d1 : nullptr);
+    ElasticRod rod(nodes, xshell::stiffness(segment_material(s)), seg.joint[0] >= 0 ? &start_d1 : nullptr);
     std::vector<double> thetas(n, 0.0);
     double theta_start = 0.0, theta_end = 0.0;
     if (seg.joint[0] >= 0) theta_start = theta_for_normal(rod.reference_frame(0), joints_[seg.joint[0]].normal());
@@ -144,6 +146,7 @@ RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
   num_dofs_ = next;
   // The joints reproduce the terminal edges and thetas just built.
   set_dofs(dofs());
+  record_theta_hints();
   for (const ElasticRod& rod : rods_) input_segment_dofs_.push_back(rod.dofs());
 }
 
@@ -162,8 +165,14 @@ TerminalEdge<double> RodLinkage::terminal(int s, int side) const {
   const SegmentTopology& seg = topology_.segments[s];
   const ElasticRod& rod = rods_[s];
   const int edge = side == 0 ? 0 : rod.num_edges() - 1;
-  return joints_[seg.joint[side]].terminal_edge(seg.label[side], seg.sign[side], rod.source_frames()[edge],
-                                                rod.thetas()[edge]);
+  const double hint = theta_hints_.empty() ? rod.thetas()[edge] : theta_hints_[s][side];
+  return joints_[seg.joint[side]].terminal_edge(seg.label[side], seg.sign[side], rod.source_frames()[edge], hint);
+}
+
+void RodLinkage::record_theta_hints() {
+  theta_hints_.resize(rods_.size());
+  for (size_t s = 0; s < rods_.size(); ++s)
+    theta_hints_[s] = {rods_[s].thetas().front(), rods_[s].thetas().back()};
 }
 
 void RodLinkage::set_dofs(const Eigen::VectorXd& r) {
@@ -224,6 +233,7 @@ void RodLinkage::restore(const LinkageState& state) {
   }
   // Recompute the joint-controlled variables from the joints, with the
   // restored thetas as branch hints.
+  record_theta_hints();
   set_dofs(dofs());
 }
 
@@ -244,6 +254,7 @@ Eigen::Vector3d RodLinkage::vertex_position(int vertex) const {
 
 void RodLinkage::update_source_frames() {
   for (ElasticRod& rod : rods_) rod.update_source_frames();
+  record_theta_hints();
 }
 
 void RodLinkage::fold_joints() {

@@ -38,6 +38,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <array>
 #include <vector>
 
 #include "graph.hpp"
@@ -54,6 +55,10 @@ struct LinkageOptions {
   RestShape rest_shape = RestShape::Input;
   JointKind joint_kind = JointKind::Rotation;  // joint parametrization (joint.hpp)
   Material material;
+  // Per segment (graph edge order): each segment's own material and section
+  // (mixed sections); empty: `material` for every segment. Stiffness,
+  // masses, stresses and utilisation of a segment all follow its entry.
+  std::vector<Material> segment_materials;
 };
 
 constexpr int kMinSubdivisions = 3;
@@ -87,6 +92,10 @@ class RodLinkage {
   int num_segments() const { return static_cast<int>(rods_.size()); }
   int num_joints() const { return static_cast<int>(joints_.size()); }
   const ElasticRod& segment(int s) const { return rods_[s]; }
+  // Material and section of segment s.
+  const Material& segment_material(int s) const {
+    return options_.segment_materials.empty() ? options_.material : options_.segment_materials[s];
+  }
   const Joint& joint(int j) const { return joints_[j]; }
 
   // Reduced unknowns.
@@ -150,6 +159,8 @@ class RodLinkage {
   };
   LocalMap local_map(int s, bool with_hessians) const;
   TerminalEdge<double> terminal(int s, int side) const;
+  // Keeps every terminal theta as the branch hint of set_dofs (see theta_hints_).
+  void record_theta_hints();
 
   LineGraph graph_;
   LinkageOptions options_;
@@ -162,6 +173,13 @@ class RodLinkage {
   // for the k-th terminal value of the joint at that side.
   std::vector<std::vector<int>> slots_;
   std::vector<Eigen::VectorXd> input_segment_dofs_;
+  // Per segment, the thetas of its start and end edges at the last source
+  // update or restore: a joint fixes a terminal theta only up to 2 pi, and
+  // set_dofs takes the branch nearest these, so that it is a function of its
+  // argument alone. (Hinting with the current thetas made it depend on the
+  // points visited since: a line search that tried a far point and came back
+  // found the twist wound by 2 pi.)
+  std::vector<std::array<double, 2>> theta_hints_;
 };
 
 }  // namespace xshell

@@ -1,5 +1,6 @@
 #include "statics_problem.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "model_error.hpp"
@@ -36,8 +37,10 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
     hi = hi.cwiseMax(v);
   }
   length_scale_ = (hi - lo).norm();
-  const RodStiffness& k = l.segment(0).stiffness();
-  force_scale_ = std::max(k.bending1, k.bending2) / (length_scale_ * length_scale_);
+  double bending_max = 0.0;
+  for (int s = 0; s < l.num_segments(); ++s)
+    bending_max = std::max({bending_max, l.segment(s).stiffness().bending1, l.segment(s).stiffness().bending2});
+  force_scale_ = bending_max / (length_scale_ * length_scale_);
 
   // Supports.
   auto check_vertex = [&](int v, const char* what) {
@@ -59,8 +62,51 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
     default_support_ = best;
     supports.push_back({best, {SupportDof::Position, SupportDof::Orientation}});
   }
+  // Prescribed displacements: the held position components move to input +
+  // displacement (the input: the graph's vertex, or a free end's input nodes).
+  Eigen::VectorXd displaced = linkage_.dofs();
   for (const VertexSupport& support : supports) {
     check_vertex(support.vertex, "a support");
+    if (!support.displacement.allFinite())
+      throw ModelError("support at " + vertex_name(support.vertex) + ": the displacement is not finite");
+    if (support.displacement.isZero(0.0)) continue;
+    bool held[3] = {false, false, false};
+    bool clamped = false;
+    for (SupportDof dof : support.fix) {
+      if (dof == SupportDof::Position) held[0] = held[1] = held[2] = true;
+      if (dof == SupportDof::X) held[0] = true;
+      if (dof == SupportDof::Y) held[1] = true;
+      if (dof == SupportDof::Z) held[2] = true;
+      if (dof == SupportDof::Orientation) clamped = true;
+    }
+    for (int c = 0; c < 3; ++c)
+      if (support.displacement[c] != 0.0 && !held[c])
+        throw ModelError("support at " + vertex_name(support.vertex) + ": its displacement moves the " +
+                         std::string(1, char('x' + c)) +
+                         " component, which the support does not hold (fix \"position\" or \"" +
+                         std::string(1, char('x' + c)) + "\")");
+    const int j = l.topology().joint_of_vertex[support.vertex];
+    if (j >= 0) {
+      const int o = l.joint_dof_offset(j) + kPosition;
+      for (int c = 0; c < 3; ++c)
+        if (held[c]) displaced[o + c] = l.graph().vertices[support.vertex][c] + support.displacement[c];
+      continue;
+    }
+    const auto [s, at_start] = l.free_end(support.vertex);
+    const int end = at_start ? 0 : l.segment(s).num_edges();
+    const int next = at_start ? 1 : l.segment(s).num_edges() - 1;
+    const Eigen::VectorXd& input = l.input_segment_dofs()[s];
+    for (int node : {end, next}) {
+      if (node == next && !clamped) continue;
+      for (int c = 0; c < 3; ++c) {
+        const int r = l.reduced_index(s, 3 * node + c);
+        if (held[c] && r >= 0) displaced[r] = input[3 * node + c] + support.displacement[c];
+      }
+    }
+  }
+  linkage_.set_dofs(displaced);
+
+  for (const VertexSupport& support : supports) {
     const int j = l.topology().joint_of_vertex[support.vertex];
     for (SupportDof dof : support.fix) {
       if (j >= 0) {
@@ -119,6 +165,7 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
       }
     }
   }
+  supports_ = supports;
   free_position_.assign(l.num_dofs(), -1);
   for (int i = 0; i < l.num_dofs(); ++i)
     if (!fixed_[i]) {
@@ -175,11 +222,16 @@ EnergyReport LinkageProblem::energy() const {
   return report;
 }
 
-Eigen::VectorXd LinkageProblem::free_gradient() const {
+Eigen::VectorXd LinkageProblem::full_gradient() const {
   if (!assembly_.matches(linkage_, free_position_)) assembly_ = LinkageAssembly(linkage_, free_position_);
   Eigen::VectorXd g;
   assembly_.gradient(linkage_, &segment_forces_, g);
   g -= point_forces_;
+  return g;
+}
+
+Eigen::VectorXd LinkageProblem::free_gradient() const {
+  const Eigen::VectorXd g = full_gradient();
   Eigen::VectorXd out(free_.size());
   for (size_t i = 0; i < free_.size(); ++i) out[i] = g[free_[i]];
   return out;
@@ -218,7 +270,9 @@ double LinkageProblem::gradient_measure() const {
 }
 
 Eigen::VectorXd LinkageProblem::free_mass() const {
-  const bool unit = linkage_.options().material.density <= 0.0;
+  bool unit = false;
+  for (int s = 0; s < linkage_.num_segments(); ++s)
+    unit = unit || linkage_.segment_material(s).density <= 0.0;
   const Eigen::VectorXd m = linkage_.lumped_mass(unit);
   Eigen::VectorXd out(free_.size());
   for (size_t i = 0; i < free_.size(); ++i) out[i] = m[free_[i]];

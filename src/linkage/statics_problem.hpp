@@ -24,7 +24,7 @@
 // includes it.
 //
 // Convergence measure: with L the diagonal of the input's bounding box,
-// EI_max the larger bending stiffness and F_c = EI_max / L^2, the gradient's
+// EI_max the largest bending stiffness of any segment and F_c = EI_max / L^2, the gradient's
 // force components (positions, lengths, edge vectors) divided by F_c and its
 // moment components (thetas, omega, alpha) by L F_c; the solve has converged when
 // the largest is at most the dimensionless gradient tolerance. That measure
@@ -43,9 +43,18 @@ namespace xshell {
 
 enum class SupportDof { Position, X, Y, Z, Orientation, OpeningAngle };
 
+// A prescribed support displacement (settlement, a pushed boundary) moves
+// the held position components of the vertex to input + displacement: a
+// joint's p, or a free end's node (and, where "orientation" clamps that end,
+// the next node by the same amount, so the clamped edge translates). Only
+// components held by Position / X / Y / Z may be displaced (ModelError
+// otherwise). The constructor sets the fixed unknowns to the displaced
+// values, so every solve starts from them; reactions are then those at the
+// displaced state.
 struct VertexSupport {
   int vertex = 0;
   std::vector<SupportDof> fix;
+  Eigen::Vector3d displacement = Eigen::Vector3d::Zero();  // length; components that fix holds
 };
 
 struct PointLoad {
@@ -83,19 +92,32 @@ class LinkageProblem {
 
   EnergyReport energy() const;
   Eigen::VectorXd free_gradient() const;
+  // Gradient of the total energy over all reduced unknowns, fixed ones
+  // included: at an equilibrium, minus its fixed entries are the generalized
+  // reactions of the supports (reactions.hpp).
+  Eigen::VectorXd full_gradient() const;
   // Free Hessian, both triangles; its pattern never changes.
   const Eigen::SparseMatrix<double>& free_hessian();
   Eigen::VectorXd gradient_weights() const;
   // max |w_i g_i| over the free unknowns.
   double gradient_measure() const;
-  // Lumped masses of the free unknowns (at density 1 when the material has
-  // none, so that they stay positive).
+  // Lumped masses of the free unknowns (at density 1 everywhere when some
+  // segment's material has none, so that they stay positive).
   Eigen::VectorXd free_mass() const;
 
   // Updates the rods' source frames and folds the (rotation) joints; when
   // given, the free velocity is carried over so that it describes the same
   // motion.
   void rebase(Eigen::VectorXd* free_velocity = nullptr);
+
+  // The supports in force (the default pin included), and whether a reduced
+  // unknown is held by one.
+  const std::vector<VertexSupport>& supports() const { return supports_; }
+  bool is_fixed(int reduced_index) const { return fixed_[reduced_index]; }
+  // Dead loads: per segment on its full variables (gravity, forces at free
+  // ends), and on the reduced unknowns (forces at joints).
+  const std::vector<Eigen::VectorXd>& segment_loads() const { return segment_forces_; }
+  const Eigen::VectorXd& joint_loads() const { return point_forces_; }
 
   double length_scale() const { return length_scale_; }
   double force_scale() const { return force_scale_; }
@@ -111,6 +133,7 @@ class LinkageProblem {
   RodLinkage linkage_;
   std::vector<bool> fixed_;
   std::vector<int> free_;
+  std::vector<VertexSupport> supports_;
   int default_support_ = -1;
   std::vector<Eigen::VectorXd> segment_forces_;  // dead loads on full variables
   Eigen::VectorXd point_forces_;                 // on reduced unknowns

@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <array>
 #include <vector>
 
 #include "frames.hpp"
@@ -86,6 +87,10 @@ class ElasticRod {
   // lengths unchanged.
   void set_rest_straight();
   const std::vector<double>& rest_lengths() const { return rest_length_; }
+  // Rest material curvatures at interior vertex i, [edge side][kappa1,
+  // kappa2], and its rest twist.
+  const std::array<std::array<double, 2>, 2>& rest_kappa(int i) const { return rest_kappa_[i]; }
+  double rest_twist(int i) const { return rest_twist_[i]; }
   void set_rest_lengths(const std::vector<double>& lengths) { rest_length_ = lengths; }
   void set_stretching_share(int edge, double share) { stretching_share_[edge] = share; }
   double stretching_share(int edge) const { return stretching_share_[edge]; }

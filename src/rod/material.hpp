@@ -28,6 +28,7 @@ struct Material {
   double poisson_ratio = 0.3;  // nu, in (-1, 0.5)
   double density = 0.0;        // mass per volume
   CrossSection section;
+  double strength = 0.0;       // allowable stress for utilisation reports; 0: none
 };
 
 struct RodStiffness {

@@ -1,0 +1,54 @@
+// Linearized buckling load factor: by how much the current loads can grow
+// before the structure loses stability, estimated from two stiffnesses.
+//
+// With K_0 the free Hessian at the equilibrium of the unloaded structure
+// (same supports, no gravity, no forces) and K_L the free Hessian at the
+// equilibrium under the loads, the stiffness under the loads scaled by
+// lambda is taken linear in lambda (the classical linearized buckling
+// analysis, the load-dependent part being mostly the geometric stiffness of
+// the internal forces):
+//   K(lambda) = K_0 + lambda (K_L - K_0).
+// The load factor is the smallest lambda > 0 at which K(lambda) turns
+// singular: with K_0 positive definite,
+//   (K_0 - K_L) phi = nu K_0 phi,  lambda = 1 / nu_max  (nu_max > 0),
+// solved by Lanczos in the K_0 inner product (Spectra's SymGEigsSolver in
+// regular-inverse mode, K_0 applied and inverted with a CHOLMOD LL^T
+// factorization). phi is the buckling mode, K_0-normalized. No positive nu
+// means the loads only stiffen the structure: no buckling load.
+// The estimate is exact for a structure whose pre-buckling deformation is
+// negligible (the Euler column: lambda P = pi^2 E I / (4 L^2) for a
+// clamped-free column, tested) and a first-order estimate otherwise; it is
+// the more accurate the closer the current loads are to the critical ones.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <string>
+
+namespace xshell {
+
+enum class BucklingStatus {
+  Found,             // load_factor and mode are set
+  NoBuckling,        // the loads never make K(lambda) singular for lambda > 0
+  UnloadedUnstable,  // K_0 is not positive definite (a mechanism or unstable without loads)
+  NotConverged,      // the eigensolver did not converge
+};
+
+struct BucklingOptions {
+  double tolerance = 1e-10;  // Spectra's relative tolerance
+  int max_restarts = 1000;
+};
+
+struct BucklingResult {
+  BucklingStatus status = BucklingStatus::NotConverged;
+  double load_factor = 0.0;  // lambda (dimensionless)
+  Eigen::VectorXd mode;      // free unknowns, phi^T K_0 phi = 1
+};
+
+// K0, KL: n x n symmetric (both triangles), the same free unknowns.
+BucklingResult linearized_buckling(const Eigen::SparseMatrix<double>& K0, const Eigen::SparseMatrix<double>& KL,
+                                   const BucklingOptions& options = {});
+
+const char* buckling_status_name(BucklingStatus status);
+
+}  // namespace xshell

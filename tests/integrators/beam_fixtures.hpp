@@ -1,0 +1,46 @@
+// Straight beams as one-segment linkages, for the engineering results
+// (reactions, stresses, buckling) against beam theory.
+#pragma once
+
+#include <cmath>
+
+#include "integrators/linkage_objective.hpp"
+#include "integrators/newton.hpp"
+#include "linkage/statics_problem.hpp"
+
+namespace xshell::testing {
+
+// A straight rod of length 1 along x, square section of side w with E I = 1
+// (E = 12 / w^4), clamped at vertex 0 (its first edge held), loaded at the
+// tip (vertex 1).
+inline LinkageProblem cantilever_beam(int subdivisions, const Eigen::Vector3d& tip_force, double w = 0.01) {
+  LineGraph g;
+  g.vertices = {{0, 0, 0}, {1, 0, 0}};
+  g.edges = {{0, 1}};
+  LinkageOptions o;
+  o.subdivisions = subdivisions;
+  o.rest_shape = RestShape::Straight;
+  o.material.young_modulus = 12.0 / std::pow(w, 4);
+  o.material.section = {SectionShape::Rectangle, w, w};
+  StaticsSetup setup;
+  setup.supports = {{0, {SupportDof::Orientation}}};
+  setup.forces = {{1, tip_force}};
+  return LinkageProblem(RodLinkage(g, o), setup);
+}
+
+inline NewtonOptions tight_newton(double tolerance = 1e-9) {
+  NewtonOptions n;
+  n.gradient_tolerance = tolerance;
+  n.max_iterations = 200;
+  n.line_search = LineSearch::Energy;
+  return n;
+}
+
+inline NewtonResult relax(LinkageProblem& problem, double tolerance = 1e-9) {
+  LinkageObjective objective(problem);
+  const NewtonResult result = solve_newton(objective, tight_newton(tolerance));
+  if (!result.converged()) MESSAGE(result.reason);
+  return result;
+}
+
+}  // namespace xshell::testing
