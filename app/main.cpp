@@ -3,6 +3,7 @@
 #include <atomic>
 #include <csignal>
 #include <iostream>
+#include <new>
 
 #include "exit_status.hpp"
 #include "relax_command.hpp"
@@ -42,8 +43,21 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? 0 : kExitInvalidInput;
   }
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
-  if (*relax_cmd) return run_relax(relax, g_stop);
-  return run_render(render);
+  // The commands report every foreseen failure themselves; this is the last
+  // net, so that nothing ends in std::terminate (an abort and a core dump).
+  try {
+    if (*relax_cmd) {
+      // A relax run stops at the next iteration and writes its last state and
+      // summary; any other command keeps the default (immediate) handling.
+      std::signal(SIGINT, on_signal);
+      std::signal(SIGTERM, on_signal);
+      return run_relax(relax, g_stop);
+    }
+    return run_render(render);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "xshell: error: out of memory (a linkage or subdivisions too large for this machine?)\n";
+  } catch (const std::exception& e) {
+    std::cerr << "xshell: error: internal error: " << e.what() << "\n";
+  }
+  return kExitInternalError;
 }

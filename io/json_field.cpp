@@ -1,6 +1,7 @@
 #include "json_field.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <climits>
 #include <cmath>
 #include <set>
@@ -38,6 +39,20 @@ std::string parse_error_reason(const std::string& what) {
   const std::size_t at = what.find("parse error");
   const std::size_t colon = what.find(": ", at == std::string::npos ? 0 : at);
   return colon == std::string::npos ? what : what.substr(colon + 2);
+}
+
+// "; JSON has no NaN or Infinity..." when the word at 1-based byte `byte`
+// (where the parser stopped) spells one of them, else "".
+std::string non_finite_hint(const std::string& text, std::size_t byte) {
+  auto is_letter = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; };
+  std::size_t begin = std::min(byte > 0 ? byte - 1 : 0, text.size());
+  while (begin > 0 && is_letter(text[begin - 1])) --begin;
+  std::size_t end = begin;
+  while (end < text.size() && is_letter(text[end])) ++end;
+  std::string word = text.substr(begin, end - begin);
+  for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (word != "nan" && word != "inf" && word != "infinity") return "";
+  return "; JSON has no NaN or Infinity: every number must be finite";
 }
 
 // Follows the parser's events to know the JSON path of each value, to report
@@ -120,7 +135,8 @@ nlohmann::json parse_json(const std::string& text, const std::string& file) {
         });
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(file + ":" + line_and_column(text, e.byte) +
-                     ": invalid JSON: " + parse_error_reason(e.what()));
+                     ": invalid JSON: " + parse_error_reason(e.what()) +
+                     non_finite_hint(text, e.byte));
   } catch (const nlohmann::json::out_of_range& e) {
     // 406: a number literal beyond the range of double ("1e999"), reported
     // before the value reaches the tracker.

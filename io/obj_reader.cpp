@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -324,6 +325,10 @@ LineGraph parse_obj(std::istream& in, const std::string& name) {
 }
 
 ObjLineGraph read_obj_with_lines(const std::string& path) {
+  // A folder opens as a stream that fails only when read: say what it is.
+  std::error_code ignored;
+  if (std::filesystem::is_directory(path, ignored))
+    throw InputError("cannot open linkage file '" + path + "': it is a folder, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot open linkage file '" + path + "': " + std::strerror(errno));
   return parse_obj_with_lines(in, path);

@@ -1,6 +1,9 @@
 #include "state_file.hpp"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -93,8 +96,11 @@ void write_state(const std::string& path, const RodLinkage& linkage, const Eigen
 }
 
 void read_state(const std::string& path, RodLinkage& linkage, const Eigen::Vector3d& origin) {
+  std::error_code ignored;  // a folder opens as a stream that fails only when read
+  if (std::filesystem::is_directory(path, ignored))
+    throw InputError(path + ": cannot read the state file: it is a folder, not a file");
   std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot read the state file");
+  if (!in) throw InputError(path + ": cannot read the state file: " + std::strerror(errno));
   json doc;
   try {
     doc = json::parse(in);

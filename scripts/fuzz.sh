@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of the OBJ and configuration readers with clang
 # (and ASan/UBSan) into build-fuzz/ and runs each for a bounded time
-# (FUZZ_SECONDS, default 60) from the corpora in fuzz/corpus. Any finding
-# (crash, sanitizer report, uncaught exception) fails the script.
+# (FUZZ_SECONDS, default 60) from the corpora in fuzz/corpus (new inputs go
+# to build-fuzz/corpus-*, the repository's corpora stay as they are). Any
+# finding fails the script: a crash, a sanitizer report, an exception other
+# than InputError, a leak, or one input taking more than 10 s (a hang).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -10,11 +12,22 @@ seconds="${FUZZ_SECONDS:-60}"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DXSHELL_FUZZ=ON \
   -DXSHELL_BUILD_TESTS=OFF >/dev/null
 cmake --build build-fuzz -j"$(nproc)" --target fuzz_obj_reader fuzz_config_reader
+export ASAN_OPTIONS=halt_on_error=1:abort_on_error=1:detect_leaks=1
+export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
+status=0
 for target in obj_reader:obj config_reader:config; do
   name="${target%%:*}"; corpus="${target##*:}"
   work="build-fuzz/corpus-$corpus"
+  log="build-fuzz/fuzz_$name.log"
   mkdir -p "$work"
-  echo "fuzzing $name for $seconds s"
-  ./build-fuzz/fuzz/fuzz_"$name" -max_total_time="$seconds" -max_len=4096 "$work" "fuzz/corpus/$corpus" \
-    -artifact_prefix=build-fuzz/ 2>&1 | tail -n 3
+  echo "fuzzing $name for $seconds s (log: $log)"
+  if ./build-fuzz/fuzz/fuzz_"$name" -max_total_time="$seconds" -max_len=4096 -timeout=10 \
+      -artifact_prefix=build-fuzz/"$name"- "$work" "fuzz/corpus/$corpus" >"$log" 2>&1; then
+    tail -n 2 "$log"
+  else
+    echo "fuzz: $name: FINDING (the input is in build-fuzz/$name-*):"
+    tail -n 80 "$log"
+    status=1
+  fi
 done
+exit "$status"

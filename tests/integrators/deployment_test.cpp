@@ -225,7 +225,7 @@ TEST_CASE(
     CHECK(problem.linkage().joint(j).opening_angle() == doctest::Approx(start + 0.5).epsilon(1e-8));
 }
 
-TEST_CASE("A failing step is halved and retried; the deployment reports a step it cannot take") {
+TEST_CASE("A failing step is halved and retried, the deployment reports a step it cannot take") {
   LinkageProblem problem = dome_problem(3);
   const double start = average_opening_angle(problem.linkage());
   DeploymentOptions options = tight(DeploymentSolver::Newton);

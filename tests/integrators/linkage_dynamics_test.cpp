@@ -153,7 +153,7 @@ LinkageProblem column(double load, double lateral) {
 }
 }  // namespace
 
-TEST_CASE("Beyond Euler's load Newton stops on the saddle; dynamics with an imperfection buckles") {
+TEST_CASE("Beyond Euler's load Newton stops on the saddle, dynamics with an imperfection buckles") {
   const double p_cr = M_PI * M_PI / 4.0;  // clamped-free, E I = 1, L = 1
   const double load = 1.2 * p_cr;
   // Exactly straight: Newton converges to the straight, unstable state.

@@ -294,7 +294,7 @@ TEST_CASE("kinetic damping: the first peak reset lands where the leapfrog recurr
   CHECK(compared == 2 * static_cast<int>(i));
 }
 
-TEST_CASE("kinetic damping: both Gerschgorin mass bounds hold; the scaled one ignores units") {
+TEST_CASE("kinetic damping: both Gerschgorin mass bounds hold, the scaled one ignores units") {
   // A random sparse symmetric K, indefinite, whose unknowns have scales
   // 1e-3 .. 1e3 (as positions and angles in different units).
   std::mt19937 rng(7);

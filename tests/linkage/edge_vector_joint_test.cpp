@@ -104,7 +104,7 @@ TEST_CASE("Edge vectors -> rotation -> edge vectors reproduces the edge vectors"
 }
 
 TEST_CASE(
-    "Edge-vector joints refuse nearly parallel edges; fold moves nothing, align re-expresses") {
+    "Edge-vector joints refuse nearly parallel edges, fold moves nothing, align re-expresses") {
   Joint joint = joint_from_edge_vectors(
       {Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 0.5, 0)},
       JointKind::EdgeVectors);
@@ -150,7 +150,7 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "A linkage with edge-vector joints is the same linkage; set_dofs rejects near-parallel edges") {
+    "A linkage with edge-vector joints is the same linkage, set_dofs rejects near-parallel edges") {
   int graphs = 0;
   for (const LineGraph& g : {single_x(), tee(), grid(3, 3), grid(3, 4, 0.4)}) {
     LinkageOptions options = test_options();

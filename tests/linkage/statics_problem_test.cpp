@@ -47,7 +47,7 @@ TEST_CASE("Problem gradient and Hessian with gravity and point loads match finit
   CHECK(checked > 1000);
 }
 
-TEST_CASE("Without supports the joint nearest the centre is pinned; supports are checked") {
+TEST_CASE("Without supports the joint nearest the centre is pinned, supports are checked") {
   const LinkageProblem pinned(RodLinkage(grid(3, 3), test_options()), StaticsSetup{});
   CHECK(pinned.default_support_vertex() == 4);
   CHECK(pinned.num_free() == pinned.linkage().num_dofs() - 6);

@@ -86,7 +86,7 @@ TEST_CASE("Updating the source frames changes neither configuration nor energy")
     CHECK((rod.material_frame(j).d2.values() - d2_before[j]).norm() < 1e-13);
 }
 
-TEST_CASE("Rod energy is invariant under rigid motions; its gradient is orthogonal to them") {
+TEST_CASE("Rod energy is invariant under rigid motions, its gradient is orthogonal to them") {
   std::mt19937 rng(9);
   ElasticRod rod = random_curved_rod(7, rng, anisotropic_stiffness());
   perturb(rod, rng, 0.2);

@@ -1,0 +1,149 @@
+// Interruptions through the real program: SIGINT or SIGTERM stops a run at
+// the next iteration with the last good state, a summary saying it was
+// interrupted and a closed series (exit status 130); SIGKILL, which cannot
+// be caught, still never leaves a truncated file under a final name.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+#include "reliability_support.hpp"
+
+using namespace xshell::testing;
+
+namespace {
+
+// Slow enough to interrupt: damped dynamics with fictitious masses.
+std::string slow_dynamics(const Scratch& dir) {
+  return sample_config(dir / "out", R"(, "solver": {"method": "dynamics", "mass": "fictitious", "max_steps": 1000000})");
+}
+
+// Slow enough to interrupt: Newton iterating on a linkage that can slide
+// away (three z rollers and a horizontal force: no equilibrium exists).
+std::string endless_newton() {
+  return config_with(grid_obj(), R"(, "solver": {"max_iterations": 1000000},
+  "supports": [{"vertex": 0, "fix": ["z"]}, {"vertex": 5, "fix": ["z"]}, {"vertex": 27, "fix": ["z"]}],
+  "loads": {"forces": [{"vertex": 13, "force": [1, 0, 0]}]})");
+}
+
+// Starts `config` in `dir`, waits for the 4th written step, sends `number`
+// and checks the interrupted run's outputs. Returns the summary.
+nlohmann::json interrupt(const Scratch& dir, const std::string& config, int number,
+                         const std::string& wait_for = "rods_000003.vtp") {
+  write_text(dir / "run.json", config);
+  RelaxProcess run(dir / "run.json", dir.path());
+  REQUIRE(run.started());
+  REQUIRE(run.wait_for(dir / "out" / wait_for));
+  run.signal(number);
+  const int raw = run.wait();
+  INFO("stderr: " << run.errors());
+  REQUIRE(raw != -1);
+  REQUIRE(WIFEXITED(raw));
+  CHECK(WEXITSTATUS(raw) == 130);
+  const std::string line = last_line(run.errors());
+  CHECK(line.rfind("xshell: interrupted after ", 0) == 0);
+  CHECK(contains(line, "interrupted by a signal"));
+
+  const nlohmann::json s = read_json(dir / "out" / "summary.json");
+  CHECK(s["interrupted"] == true);
+  CHECK(s["status"] == "interrupted");
+  CHECK(s["reason"] == "interrupted by a signal");
+  CHECK(s["converged"] == false);
+  CHECK(std::isfinite(s["energy"]["total"].get<double>()));
+  CHECK(read_json(dir / "out" / "state.json")["format"] == "xshell-state");
+  // The series is closed and names every step file there is; every file is
+  // complete and none is left under a temporary name.
+  const std::string pvd = read_text(dir / "out" / "series.pvd");
+  int steps = 0;
+  for (const auto& entry : fs::directory_iterator(dir / "out"))
+    if (entry.path().extension() == ".vtp") {
+      CHECK_MESSAGE(contains(pvd, "file=\"" + entry.path().filename().string() + "\""),
+                    "not in series.pvd: " << entry.path().filename());
+      ++steps;
+    }
+  CHECK(steps >= 4);
+  CHECK(check_outputs_complete(dir / "out") >= steps + 3);
+  CHECK(temporary_files(dir / "out").empty());
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("interrupt: SIGTERM during damped dynamics") {
+  Scratch dir("sigterm-dynamics");
+  const nlohmann::json s = interrupt(dir, slow_dynamics(dir), SIGTERM);
+  CHECK(s["solver"] == "dynamics");
+  CHECK(s["iterations"].get<int>() >= 3);
+}
+
+TEST_CASE("interrupt: SIGINT during damped dynamics") {
+  Scratch dir("sigint-dynamics");
+  const nlohmann::json s = interrupt(dir, slow_dynamics(dir), SIGINT);
+  CHECK(s["iterations"].get<int>() >= 3);
+}
+
+TEST_CASE("interrupt: SIGTERM and SIGINT during Newton, the state restarts the run") {
+  for (const int number : {SIGTERM, SIGINT}) {
+    CAPTURE(number);
+    Scratch dir("signal-newton");
+    const nlohmann::json s = interrupt(dir, endless_newton(), number);
+    CHECK(s["solver"] == "newton");
+    CHECK(s["iterations"].get<int>() >= 3);
+    // The written state is the one the summary describes: a restart from it
+    // (one iteration, then the limit) starts at the summary's energy.
+    write_text(dir / "again.json", config_with(grid_obj(), R"(, "solver": {"max_iterations": 1},
+  "supports": [{"vertex": 0, "fix": ["z"]}, {"vertex": 5, "fix": ["z"]}, {"vertex": 27, "fix": ["z"]}],
+  "loads": {"forces": [{"vertex": 13, "force": [1, 0, 0]}]})"));
+    const CommandResult again = run_xshell("relax again.json --init out/state.json --out again", dir.path());
+    CAPTURE(again.errors);
+    CHECK(again.status == 3);
+    CHECK(read_json(dir / "again" / "summary.json")["history"][0]["energy"].get<double>() ==
+          doctest::Approx(s["energy"]["total"].get<double>()).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("interrupt: SIGINT during a deployment") {
+  Scratch dir("sigint-deployment");
+  const nlohmann::json s = interrupt(
+      dir, config_with(grid_obj(), R"(, "deployment": {"average_opening_angle": 1.2, "steps": 400})"), SIGINT,
+      "rods_000004.vtp");
+  REQUIRE(s.contains("deployment"));
+  CHECK(s["deployment"]["status"] == "interrupted");
+  // Every step in the table is complete: all nine columns.
+  const std::string table = read_text(dir / "out" / "deployment.csv");
+  int rows = 0;
+  std::size_t start = table.find('\n') + 1;
+  for (std::size_t end = table.find('\n', start); end != std::string::npos; end = table.find('\n', start)) {
+    const std::string row = table.substr(start, end - start);
+    CHECK(std::count(row.begin(), row.end(), ',') == 8);
+    ++rows;
+    start = end + 1;
+  }
+  CHECK(start == table.size());  // ends with a complete line
+  CHECK(rows >= 4);
+}
+
+TEST_CASE("interrupt: SIGKILL at any moment leaves no truncated file under a final name") {
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> pause_ms(0, 40);
+  int killed = 0, files = 0;
+  for (const char* step : {"rods_000001.vtp", "rods_000004.vtp", "frames_000006.vtp", "joints_000009.vtp"}) {
+    CAPTURE(step);
+    Scratch dir("sigkill");
+    write_text(dir / "run.json", slow_dynamics(dir));
+    RelaxProcess run(dir / "run.json", dir.path());
+    REQUIRE(run.started());
+    REQUIRE(run.wait_for(dir / "out" / step));
+    std::this_thread::sleep_for(std::chrono::milliseconds(pause_ms(rng)));
+    run.signal(SIGKILL);
+    const int raw = run.wait();
+    REQUIRE(raw != -1);
+    CHECK(WIFSIGNALED(raw));
+    killed += WIFSIGNALED(raw) ? 1 : 0;
+    files += check_outputs_complete(dir / "out");
+    // No summary claims anything: the run never finished.
+    CHECK_FALSE(fs::exists(dir / "out" / "summary.json"));
+  }
+  CHECK(killed == 4);
+  CHECK(files >= 4 * 5);
+}
