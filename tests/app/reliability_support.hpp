@@ -80,7 +80,8 @@ inline bool permissions_bind() { return ::geteuid() != 0; }
 // Runs `xshell ARGS` in `dir` as an unprivileged user, so that permission
 // bits bind: directly when the tests do not run as root, else through
 // setpriv(1) as nobody (a copy of the program in `dir`, so that nobody can
-// reach it). Returns status -2 when neither is possible.
+// reach it; without LSAN_OPTIONS, whose suppressions file nobody may not
+// be able to read). Returns status -2 when neither is possible.
 inline CommandResult run_xshell_unprivileged(const std::string& args, const fs::path& dir) {
   if (permissions_bind()) return run_xshell(args, dir);
   if (std::system("command -v setpriv >/dev/null 2>&1") != 0) return {-2, ""};
@@ -89,7 +90,8 @@ inline CommandResult run_xshell_unprivileged(const std::string& args, const fs::
   fs::permissions(dir, fs::perms::all & ~fs::perms::group_write & ~fs::perms::others_write);
   const fs::path err = dir / "stderr.txt";
   const std::string command = "cd '" + dir.string() +
-                              "' && setpriv --reuid=65534 --regid=65534 --clear-groups ./xshell-copy " + args +
+                              "' && env -u LSAN_OPTIONS setpriv --reuid=65534 --regid=65534 --clear-groups "
+                              "./xshell-copy " + args +
                               " > /dev/null 2> '" + err.string() + "'";
   const int raw = std::system(command.c_str());
   CommandResult r;
