@@ -51,6 +51,9 @@ int main(int argc, char** argv) {
       // summary; any other command keeps the default (immediate) handling.
       std::signal(SIGINT, on_signal);
       std::signal(SIGTERM, on_signal);
+      // A closed stderr (`xshell relax ... 2>&1 | head`) must not kill the
+      // run before it writes its outputs: a failed write is harmless.
+      std::signal(SIGPIPE, SIG_IGN);
       return run_relax(relax, g_stop);
     }
     return run_render(render);

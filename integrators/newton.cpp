@@ -272,6 +272,17 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
 
     report.iteration = iteration + 1;
     report.energy = objective_.energy();
+    if (!std::isfinite(report.energy)) {
+      // KINSOL's line search watches the gradient only: a step to a point
+      // with a finite gradient but no finite energy is not a good state.
+      objective_.set(q0);  // the last good state
+      s.evaluator.sync();
+      report.energy = result.energy;
+      result.status = NewtonStatus::NonFinite;
+      result.reason = "the energy is not finite after the step of iteration " + std::to_string(iteration + 1) +
+                      "; the state before it is kept";
+      break;
+    }
     report.gradient_measure = weighted_max_norm(weights, s.evaluator.gradient());
     report.step_norm = (q - q0).lpNorm<Eigen::Infinity>();
     // KINSOL's own stagnation test (KINScSNorm with unit scaling); KINSOL

@@ -147,3 +147,29 @@ TEST_CASE("interrupt: SIGKILL at any moment leaves no truncated file under a fin
   CHECK(killed == 4);
   CHECK(files >= 4 * 5);
 }
+
+TEST_CASE("interrupt: a closed stderr (SIGPIPE) does not stop a run before its outputs") {
+  Scratch dir("sigpipe");
+  write_text(dir / "run.json", sample_config(dir / "out"));
+  int fds[2];
+  REQUIRE(pipe(fds) == 0);
+  close(fds[0]);  // nobody reads: every write to stderr fails
+  const std::string binary = XSHELL_BINARY, config = (dir / "run.json").string();
+  char* argv[] = {const_cast<char*>(binary.c_str()), const_cast<char*>("relax"), const_cast<char*>(config.c_str()),
+                  const_cast<char*>("--verbose"), nullptr};
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], 2);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(fds[1]);
+  REQUIRE(spawned == 0);
+  int raw = 0;
+  REQUIRE(waitpid(pid, &raw, 0) == pid);
+  CHECK_FALSE(WIFSIGNALED(raw));
+  REQUIRE(WIFEXITED(raw));
+  CHECK(WEXITSTATUS(raw) == 0);
+  CHECK(read_json(dir / "out" / "summary.json")["converged"] == true);
+  CHECK(check_outputs_complete(dir / "out") >= 6);
+}
