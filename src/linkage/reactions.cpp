@@ -57,7 +57,11 @@ std::vector<SupportReaction> support_reactions(const LinkageProblem& problem) {
       }
       continue;
     }
-    const auto [s, at_start] = l.free_end(support.vertex);
+    // (Named variables, not a structured binding: the lambdas below capture
+    // them, which C++17 does not allow for bindings; clang refuses it.)
+    const std::pair<int, bool> end_of = l.free_end(support.vertex);
+    const int s = end_of.first;
+    const bool at_start = end_of.second;
     const ElasticRod& rod = l.segment(s);
     const int end = at_start ? 0 : rod.num_edges();
     const int next = at_start ? 1 : rod.num_edges() - 1;

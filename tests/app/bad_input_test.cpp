@@ -412,6 +412,20 @@ TEST_CASE("bad input: a deployment naming a vertex that does not exist") {
       dir.path(), {"run.json: deployment.joint_angles[0].vertex: vertex 40 is out of range"});
 }
 
+TEST_CASE("bad input: a deployment that drives a free rod end") {
+  Scratch dir("config-deployment-free-end");
+  check_rejected(
+      relax_config(dir, grid_config(R"(, "deployment": {"joint_angles": [{"vertex": 0, "angle": 1.0}]})")),
+      dir.path(), {"run.json: deployment.joint_angles[0].vertex: vertex 0 is a free rod end"});
+}
+
+TEST_CASE("bad input: a deployment with edge-vector joints") {
+  Scratch dir("config-deployment-edge-vectors");
+  check_rejected(relax_config(dir, grid_config(R"(, "joints": "edge_vectors",
+  "deployment": {"average_opening_angle": 1.2})")),
+                 dir.path(), {"run.json: deployment: needs \"joints\": \"rotation\""});
+}
+
 TEST_CASE("bad input: a support that does not apply to its vertex") {
   Scratch dir("config-support-kind");
   // Vertex 0 of the grid is a free rod end: it has no opening angle.
