@@ -81,6 +81,10 @@ struct BenchResult {
   long dynamics_steps = -1, kinetic_iterations = -1;
   double dynamics_s = NAN, kinetic_s = NAN;
   std::string dynamics_status = "skipped", kinetic_status = "skipped";
+  // Inside the solve, medians over its iterations: Hessian assembly, the
+  // numeric factorizations, and everything else (evaluations, line search,
+  // solves, rebase, bookkeeping).
+  double solve_hessian_ms = NAN, solve_factorization_ms = NAN, solve_rest_ms = NAN;
 };
 
 // What run_case measures besides the factorization costs.
@@ -96,7 +100,7 @@ const char* kColumns =
     "hessian_ms,factorization_ms,iteration_ms,factorizations_per_iteration,iteration_over_factorizations,"
     "newton_iterations,solve_s,status,gradient_measure,peak_rss_mb,hessian_cpu_ms,factorization_cpu_ms,"
     "iteration_cpu_ms,iteration_over_factorizations_cpu,dynamics_steps,dynamics_s,dynamics_status,"
-    "kinetic_iterations,kinetic_s,kinetic_status";
+    "kinetic_iterations,kinetic_s,kinetic_status,solve_hessian_ms,solve_factorization_ms,solve_rest_ms";
 
 std::string to_csv(const BenchResult& r) {
   std::ostringstream o;
@@ -108,7 +112,7 @@ std::string to_csv(const BenchResult& r) {
     << r.gradient_measure << ',' << r.peak_rss_mb << ',' << r.hessian_cpu_ms << ',' << r.factorization_cpu_ms << ','
     << r.iteration_cpu_ms << ',' << r.iteration_over_factorizations_cpu << ',' << r.dynamics_steps << ','
     << r.dynamics_s << ',' << r.dynamics_status << ',' << r.kinetic_iterations << ',' << r.kinetic_s << ','
-    << r.kinetic_status;
+    << r.kinetic_status << ',' << r.solve_hessian_ms << ',' << r.solve_factorization_ms << ',' << r.solve_rest_ms;
   return o.str();
 }
 
@@ -117,7 +121,7 @@ BenchResult from_csv(const std::string& line) {
   std::stringstream in(line);
   for (std::string item; std::getline(in, item, ',');) f.push_back(item);
   BenchResult r;
-  if (f.size() != 29) {
+  if (f.size() != 32) {
     r.status = "failed";
     return r;
   }
@@ -151,6 +155,9 @@ BenchResult from_csv(const std::string& line) {
   r.kinetic_iterations = std::stol(f[26]);
   r.kinetic_s = d(f[27]);
   r.kinetic_status = f[28];
+  r.solve_hessian_ms = d(f[29]);
+  r.solve_factorization_ms = d(f[30]);
+  r.solve_rest_ms = d(f[31]);
   return r;
 }
 
@@ -310,7 +317,7 @@ BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
     options.gradient_tolerance = 1e-6;
     options.max_iterations = 100;
     NewtonSolver solver(objective, options);
-    std::vector<double> seconds, cpu;
+    std::vector<double> seconds, cpu, hessian_s, factorization_s, rest_s;
     long factorizations = 0;
     double total = 0.0, total_cpu = 0.0, last_cpu = 0.0;
     NewtonCallbacks callbacks;
@@ -318,6 +325,9 @@ BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
       const double now = cpu_seconds();
       if (report.iteration > 0) {
         seconds.push_back(report.seconds);
+        hessian_s.push_back(report.hessian_seconds);
+        factorization_s.push_back(report.factorization_seconds);
+        rest_s.push_back(report.seconds - report.hessian_seconds - report.factorization_seconds);
         cpu.push_back(now - last_cpu);  // includes the driver's bookkeeping between reports
         total += report.seconds;
         total_cpu += now - last_cpu;
@@ -332,6 +342,9 @@ BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
     r.status = result.converged() ? (result.stable ? "converged" : "converged_unstable") : "failed";
     if (!seconds.empty()) {
       r.iteration_ms = 1e3 * median(seconds);
+      r.solve_hessian_ms = 1e3 * median(hessian_s);
+      r.solve_factorization_ms = 1e3 * median(factorization_s);
+      r.solve_rest_ms = 1e3 * median(rest_s);
       r.factorizations_per_iteration = double(factorizations) / double(seconds.size());
       r.iteration_over_factorizations = 1e3 * total / (double(factorizations) * r.factorization_ms);
       r.iteration_cpu_ms = 1e3 * median(cpu);
@@ -386,9 +399,10 @@ BenchResult run_isolated(const BenchCase& c, const BenchSettings& settings) {
 }
 
 void print_row(const BenchResult& r) {
-  std::printf("%-24s %3d %2s %7ld %9ld %9.2f %9.2f %9.2f %9.2f %5.2f %6.2f %6.2f %4ld %8.2f %7.0f  %s\n",
+  std::printf("%-24s %3d %2s %7ld %9ld %9.2f %9.2f %9.2f %9.2f %7.2f %5.2f %6.2f %6.2f %4ld %8.2f %7.0f  %s\n",
               r.name.c_str(), r.subdivisions, r.gravity ? "g" : "-", r.free_unknowns, r.hessian_nonzeros,
-              r.energy_gradient_ms, r.hessian_ms, r.factorization_ms, r.iteration_ms, r.factorizations_per_iteration,
+              r.energy_gradient_ms, r.hessian_ms, r.factorization_ms, r.iteration_ms, r.solve_rest_ms,
+              r.factorizations_per_iteration,
               r.iteration_over_factorizations, r.iteration_over_factorizations_cpu, r.iterations, r.solve_s,
               r.peak_rss_mb, r.status.c_str());
   std::fflush(stdout);
@@ -507,10 +521,11 @@ int main(int argc, char** argv) {
   threads = omp_get_max_threads();
 #endif
   std::printf("xshell_bench: %zu cases, %d repetitions, %d threads (OMP_WAIT_POLICY=%s); times in ms (solve in s), "
-              "medians; it/f: iteration / its factorizations (wall), cpu: the same in CPU time\n",
+              "medians; rest: iteration minus its Hessian and factorizations; it/f: iteration / its factorizations (wall), cpu: "
+              "the same in CPU time\n",
               cases.size(), reps, threads, std::getenv("OMP_WAIT_POLICY"));
-  std::printf("%-24s %3s %2s %7s %9s %9s %9s %9s %9s %5s %6s %6s %4s %8s %7s  %s\n", "case", "n_s", "g", "free",
-              "H nnz", "E+grad", "Hessian", "factor", "iter", "f/it", "it/f", "cpu", "its", "solve", "MB", "status");
+  std::printf("%-24s %3s %2s %7s %9s %9s %9s %9s %9s %7s %5s %6s %6s %4s %8s %7s  %s\n", "case", "n_s", "g", "free",
+              "H nnz", "E+grad", "Hessian", "factor", "iter", "rest", "f/it", "it/f", "cpu", "its", "solve", "MB", "status");
   std::ofstream out(csv);
   out << kColumns << "\n";
   std::vector<BenchResult> results;

@@ -294,6 +294,8 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
     report.shifted = s.system.any_shift();
     report.shift = s.system.max_shift();
     report.seconds = seconds_since(iteration_start);
+    report.hessian_seconds = s.system.hessian_seconds();
+    report.factorization_seconds = s.system.factorization_seconds();
     if (callbacks.on_iteration) callbacks.on_iteration(report);
   }
 

@@ -97,6 +97,8 @@ struct NewtonReport {
   bool energy_line_search = false;  // the step was globalized on the energy (not by KINSOL)
   double shift = 0.0;               // coefficient of M in the shift (0 if none)
   double seconds = 0.0;             // wall time of the iteration
+  double hessian_seconds = 0.0;        // of which Hessian assembly
+  double factorization_seconds = 0.0;  // and numeric factorizations (shifted retries included)
 };
 
 struct NewtonCallbacks {

@@ -53,7 +53,12 @@ class NewtonSystem final : public DirectSolveBackend {
   void reset_iteration_flags() {
     setup_failed_ = deferred_ = any_shift_ = false;
     max_shift_ = 0.0;
+    hessian_seconds_ = factorization_seconds_ = 0.0;
   }
+  // Wall time of the setups since reset_iteration_flags(): Hessian
+  // assembly, and the numeric factorizations (shifted retries included).
+  double hessian_seconds() const { return hessian_seconds_; }
+  double factorization_seconds() const { return factorization_seconds_; }
   bool any_shift() const { return any_shift_; }
   double max_shift() const { return max_shift_; }
 
@@ -68,6 +73,8 @@ class NewtonSystem final : public DirectSolveBackend {
   bool deferred_ = false;
   bool any_shift_ = false;
   double max_shift_ = 0.0;
+  double hessian_seconds_ = 0.0;
+  double factorization_seconds_ = 0.0;
 };
 
 }  // namespace xshell
