@@ -64,6 +64,39 @@ TEST_CASE("relax --init from a written state reproduces it without iterating") {
   CHECK(compared == 96);
 }
 
+TEST_CASE("relax --init accepts a state of the same linkage under other loads and materials") {
+  // A state is only where the solve starts: a sweep over loads or materials
+  // continues from the previous equilibrium and reaches the same answer as
+  // a start from the flat input.
+  const fs::path dir = temporary_directory("init-sweep");
+  write_text(dir / "light.json", sample_config(dir / "light"));
+  std::string heavy = sample_config(dir / "heavy");
+  heavy.replace(heavy.find("\"young_modulus\": 2.0e10"), 23, "\"young_modulus\": 1.0e10");
+  heavy.replace(heavy.find("\"force\": [0, 0, -5.0]"), 21, "\"force\": [0, 0, -9.0]");
+  write_text(dir / "heavy.json", heavy);
+  REQUIRE(run_xshell("relax light.json", dir).status == 0);
+  REQUIRE(run_xshell("relax heavy.json", dir).status == 0);
+  const CommandResult r = run_xshell("relax heavy.json --init light/state.json --out warm", dir);
+  CAPTURE(r.errors);
+  REQUIRE(r.status == 0);
+  const nlohmann::json cold = read_json(dir / "heavy" / "summary.json"), warm = read_json(dir / "warm" / "summary.json");
+  const nlohmann::json light = read_json(dir / "light" / "summary.json");
+  CHECK(warm["converged"] == true);
+  CHECK(warm["configuration"]["material"]["young_modulus"].get<double>() == 1.0e10);
+  // The heavier, softer linkage sags further than the light one, and the warm
+  // start finds the same equilibrium as the cold one.
+  CHECK(warm["vertices"][13][2].get<double>() < 1.5 * light["vertices"][13][2].get<double>());
+  CHECK(warm["energy"]["total"].get<double>() ==
+        doctest::Approx(cold["energy"]["total"].get<double>()).epsilon(1e-9));
+  int compared = 0;
+  for (size_t v = 0; v < cold["vertices"].size(); ++v)
+    for (int c = 0; c < 3; ++c) {
+      CHECK(std::abs(cold["vertices"][v][c].get<double>() - warm["vertices"][v][c].get<double>()) < 1e-8);
+      ++compared;
+    }
+  CHECK(compared == 96);
+}
+
 TEST_CASE("relax: invalid input exits 2 with one clear message") {
   const fs::path dir = temporary_directory("invalid");
   struct Case {
