@@ -297,6 +297,7 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
     DynamicsOptions options;
     options.form = config.solver.first_order ? DynamicsForm::FirstOrder : DynamicsForm::SecondOrder;
     options.mass = config.solver.mass == MassSetting::Fictitious ? MassModel::Fictitious : MassModel::Physical;
+    options.start = config.solver.start == StartSetting::Rest ? DynamicsStart::Rest : DynamicsStart::SlowManifold;
     options.damping = config.solver.damping.value_or(0.0);
     options.gradient_tolerance = config.solver.gradient_tolerance;
     options.max_steps = config.solver.step_limit();

@@ -75,7 +75,7 @@ struct DeploymentOptions {
   DeploymentSolver solver = DeploymentSolver::Newton;
   DeploymentPredictor predictor = DeploymentPredictor::Tangent;  // average actuation only
   NewtonOptions newton;      // line_search is ignored under the average constraint
-  DynamicsOptions dynamics;  // per step, from rest
+  DynamicsOptions dynamics;  // per step, from its start (DynamicsOptions::start)
   int max_halvings = 6;      // consecutive halvings of a failing increment
 };
 

@@ -149,7 +149,8 @@ struct DampingChoice {
   Damping damping;
   double c = 0.0;  // reported
   long factorizations = 0;
-  bool unstable = false;  // the Hessian was indefinite
+  bool unstable = false;   // the Hessian was indefinite
+  bool zero_mode = false;  // or had a (numerically) zero mode
   ModeEstimate modes;
 };
 
@@ -173,12 +174,12 @@ DampingChoice choose_damping(const DynamicsOptions& options, CholeskySolver& sol
     return choice;
   }
   // Rayleigh: C = b (H + mu M).
-  choice.modes = estimate_modes(solver, H, mass, options.damping_iterations, options.shift, 4, warm);
-  const ModeEstimate& m = choice.modes;
-  choice.factorizations = m.lowest.factorizations;
   double trace = 0.0;
   for (Eigen::Index i = 0; i < H.rows(); ++i) trace += std::abs(H.coeff(i, i));
   const double floor = std::max(options.mode_floor * trace / mass.sum(), std::numeric_limits<double>::min());
+  choice.modes = estimate_modes(solver, H, mass, options.damping_iterations, options.shift, 4, warm, floor);
+  const ModeEstimate& m = choice.modes;
+  choice.factorizations = m.lowest.factorizations;
   double mu = 0.0, b = 0.0, omega = 0.0;
   if (!m.lowest.ok) {
     // Nothing known: mass-proportional damping with c = 1.
@@ -187,14 +188,19 @@ DampingChoice choose_damping(const DynamicsOptions& options, CholeskySolver& sol
     choice.c = 1.0;
     return choice;
   }
-  if (m.lowest.eigenvalue > 0.0 || !m.lowest.shifted) {
-    const double lambda = std::max(m.lowest.eigenvalue, floor);
+  if (m.lowest.eigenvalue > floor) {
+    const double lambda = m.lowest.eigenvalue;
     mu = lambda;
     omega = std::sqrt(lambda);
     b = 1.0 / omega;
   } else {
-    choice.unstable = true;
-    const double negative = -m.lowest.eigenvalue;
+    // Indefinite, or a zero mode (which round-off puts on either side of
+    // zero): the damping rate comes from the lowest stable mode. With the
+    // zero mode's own eigenvalue (the floor), b = 1 / sqrt(floor) would
+    // overdamp every other mode into a creep.
+    choice.unstable = m.lowest.eigenvalue < 0.0 && m.lowest.shifted;
+    choice.zero_mode = !choice.unstable;
+    const double negative = std::max(-m.lowest.eigenvalue, 0.0);
     const double lambda = m.stable.ok ? std::max(m.stable.eigenvalue, floor) : std::max(negative, floor);
     // An (almost) zero mode, such as a joint free to open at the start,
     // still gets damping C x = b mu M x: mu is at least a fraction of the
@@ -249,10 +255,11 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
   DynamicsSystem system(evaluator, options.form, mass, choice.damping);
   const bool second_order = options.form == DynamicsForm::SecondOrder;
 
-  // Initial state at rest.
+  // Initial state: at rest, or moving with the overdamped velocity.
   Eigen::VectorXd y(system.size());
   y.head(n) = objective.get();
   if (second_order) y.tail(n).setZero();
+  const bool slow_start = second_order && options.start == DynamicsStart::SlowManifold;
   Eigen::VectorXd weights = objective.gradient_weights();
   const Eigen::VectorXd scales =
       options.scaled_tolerances ? unknown_scales(weights) : Eigen::VectorXd::Ones(n);
@@ -267,11 +274,39 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
   DynamicsReport report;
   report.energy = energy0;
   report.gradient_measure = weighted_max_norm(weights, evaluator.gradient());
-  if (callbacks.on_step) callbacks.on_step(report);
-
   auto kinetic = [&](const Eigen::VectorXd& state) {
     return second_order ? 0.5 * state.tail(n).dot(mass.cwiseProduct(state.tail(n))) : 0.0;
   };
+  const bool moving = std::isfinite(report.energy) && std::isfinite(report.gradient_measure) &&
+                      report.gradient_measure > options.gradient_tolerance;
+  // From an indefinite Hessian (choice.unstable) the slow manifold does not
+  // attract along the unstable modes, and -C^-1 grad E is large along the
+  // nearly undamped ones: such starts stay at rest.
+  bool on_slow_manifold = false;
+  if (slow_start && moving && !choice.unstable && !choice.zero_mode) {
+    const double inertia =
+        options.start_time > 0.0 ? system.damping().rate / options.start_time : 0.0;
+    try {
+      Eigen::VectorXd v = system.overdamped_velocity(0.0, inertia);
+      // The overdamped velocity is the linear model's at the start. Along a
+      // (nearly) zero mode, such as the free arm of a tee under gravity, it
+      // is huge: it would carry the unknowns far beyond the model's reach
+      // within one time constant (1 / rate), and the run would start with a
+      // kinetic energy thousands of times the energy there is to release.
+      // The velocity is scaled down to move at most start_reach (in units
+      // of unknown_scales) in one time constant.
+      const double reach = v.cwiseQuotient(scales).cwiseAbs().maxCoeff() / system.damping().rate;
+      if (reach > options.start_reach) v *= options.start_reach / reach;
+      if (v.allFinite()) {
+        y.tail(n) = v;
+        on_slow_manifold = true;
+      }
+    } catch (const std::runtime_error&) {
+      // C + M/T not positive definite after all: start at rest.
+    }
+    report.kinetic_energy = kinetic(y);
+  }
+  if (callbacks.on_step) callbacks.on_step(report);
   auto finish = [&](DynamicsStatus status, std::string reason) {
     result.status = status;
     result.reason = std::move(reason);
@@ -282,8 +317,20 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
   } else if (report.gradient_measure <= options.gradient_tolerance) {
     finish(DynamicsStatus::Converged, "in equilibrium at the start");
   } else {
-    IdaIntegrator integrator(system, options, y, system.consistent_derivatives(y, 0.0),
-                             absolute_tolerances());
+    const Eigen::VectorXd yp0 = system.consistent_derivatives(y, 0.0);
+    IdaIntegrator integrator(system, options, y, yp0, absolute_tolerances());
+    if (on_slow_manifold && options.initial_step <= 0.0 && options.start_step > 1.0) {
+      // IDA's own first step is h = 0.5 / |y'|_WRMS (IDA's initial step
+      // rule for a distant output time), sized for a fast layer that this
+      // start does not have: begin start_step times longer.
+      const Eigen::VectorXd atol = absolute_tolerances();
+      const Eigen::VectorXd weighted =
+          yp0.array() / (options.relative_tolerance * y.array().abs() + atol.array());
+      const double norm = std::sqrt(weighted.squaredNorm() / static_cast<double>(weighted.size()));
+      if (norm > 0.0 && std::isfinite(norm))
+        check_sundials(IDASetInitStep(integrator.ida.get(), options.start_step * 0.5 / norm),
+                       "IDASetInitStep");
+    }
     auto accumulate_stats = [&] {
       long value = 0;
       void* m = integrator.ida.get();

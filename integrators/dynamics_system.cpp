@@ -197,13 +197,19 @@ Eigen::VectorXd DynamicsSystem::consistent_derivatives(const Eigen::VectorXd& y,
     yp.tail(n) = -(damping_force(v, t) + g).cwiseQuotient(mass_);
     return yp;
   }
+  return overdamped_velocity(t);
+}
+
+Eigen::VectorXd DynamicsSystem::overdamped_velocity(double t, double inertia) {
+  const Eigen::Index n = unknowns();
+  const Eigen::VectorXd& g = evaluator_.gradient();
   const bool stiffness =
       from_.stiffness_coefficient > 0.0 || (blending_ && to_.stiffness_coefficient > 0.0);
-  if (!stiffness) return -g.cwiseQuotient(mass_) / mass_coefficient(t);
-  // C q' = -g.
+  if (!stiffness) return -g.cwiseQuotient(mass_) / (mass_coefficient(t) + inertia);
+  // (C + inertia M) v = -g.
   Eigen::SparseMatrix<double> C(n, n);
   add_stiffness(t, 1.0, C);
-  const Eigen::VectorXd shift = mass_coefficient(t) * mass_;
+  const Eigen::VectorXd shift = (mass_coefficient(t) + inertia) * mass_;
   if (cholesky_.factorize(C, &shift) != FactorizationStatus::PositiveDefinite)
     throw std::runtime_error("the damping matrix C is not positive definite");
   return -cholesky_.solve(Eigen::VectorXd(g));

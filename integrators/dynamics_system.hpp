@@ -98,6 +98,15 @@ class DynamicsSystem final : public DirectSolveBackend {
   // order; factorizes C when S is used). Throws std::runtime_error if C
   // cannot be factorized.
   Eigen::VectorXd consistent_derivatives(const Eigen::VectorXd& y, double t);
+  // v = -(C(t) + inertia M)^-1 grad E at the objective's current
+  // configuration (size n; factorizes C + inertia M when S is used).
+  // inertia = 0: the velocity of the overdamped flow; started from it, the
+  // second-order form has v' = 0, on its slow manifold, without the fast
+  // layer that takes it from rest to the overdamped motion. inertia = 1/T
+  // > 0 limits the velocity of weakly damped modes (c << m/T) to about the
+  // -T M^-1 grad E they reach from rest in a time T. Throws
+  // std::runtime_error if the matrix cannot be factorized.
+  Eigen::VectorXd overdamped_velocity(double t, double inertia = 0.0);
 
   CholeskySolver& cholesky() { return cholesky_; }
   bool last_setup_failed() const { return setup_failed_; }

@@ -46,7 +46,7 @@ LowestMode estimate_lowest_mode(CholeskySolver& solver, const Eigen::SparseMatri
 
 ModeEstimate estimate_modes(CholeskySolver& solver, const Eigen::SparseMatrix<double>& H,
                             const Eigen::VectorXd& mass, int iterations, const ShiftOptions& shift,
-                            int max_unstable, const ModeEstimate* warm) {
+                            int max_unstable, const ModeEstimate* warm, double zero_floor) {
   ModeEstimate estimate;
   LowestMode& mode = estimate.lowest;
   const ShiftedFactorization f = factorize_with_shift(solver, H, mass, shift);
@@ -84,7 +84,7 @@ ModeEstimate estimate_modes(CholeskySolver& solver, const Eigen::SparseMatrix<do
     m.vector = std::move(x);
   };
   iterate(mode, warm != nullptr && warm->lowest.ok ? &warm->lowest.vector : nullptr);
-  if (!mode.ok || mode.eigenvalue > 0.0) {
+  if (!mode.ok || mode.eigenvalue > zero_floor) {
     estimate.stable = mode;
     return estimate;
   }
@@ -98,7 +98,7 @@ ModeEstimate estimate_modes(CholeskySolver& solver, const Eigen::SparseMatrix<do
     iterate(next, start);
     start = nullptr;
     if (!next.ok) break;
-    if (next.eigenvalue > 0.0) {
+    if (next.eigenvalue > zero_floor) {
       estimate.stable = std::move(next);
       break;
     }

@@ -51,10 +51,13 @@ struct ModeEstimate {
   int unstable_modes = 0;  // negative eigenvalues found
   double certified_shift = 0.0;  // s with H + s M positive definite (0 if H is)
 };
+// Modes with eigenvalues at or below zero_floor (zero modes, such as the
+// rigid swing of a free arm) count as not stable: `stable` is the lowest
+// mode above it.
 ModeEstimate estimate_modes(CholeskySolver& solver, const Eigen::SparseMatrix<double>& H,
                             const Eigen::VectorXd& mass, int iterations = 20,
                             const ShiftOptions& shift = {}, int max_unstable = 4,
-                            const ModeEstimate* warm = nullptr);
+                            const ModeEstimate* warm = nullptr, double zero_floor = 0.0);
 
 // c = 2 sqrt(|lambda_min|) (critical damping of the slowest mode; near a
 // saddle, |lambda_min| is the growth rate scale of the unstable mode),

@@ -34,6 +34,8 @@ const Names<LineSearchSetting> kLineSearches = {{LineSearchSetting::Energy, "ene
                                                 {LineSearchSetting::Kinsol, "kinsol"}};
 const Names<MassSetting> kMasses = {{MassSetting::Physical, "physical"},
                                   {MassSetting::Fictitious, "fictitious"}};
+const Names<StartSetting> kStarts = {{StartSetting::SlowManifold, "slow_manifold"},
+                                     {StartSetting::Rest, "rest"}};
 const Names<OutputFormat> kFormats = {{OutputFormat::Binary, "binary"},
                                       {OutputFormat::Ascii, "ascii"}};
 const Names<Fixed> kFixed = {{Fixed::Position, "position"},
@@ -230,7 +232,7 @@ Loads read_loads(const JsonField& f) {
 
 SolverOptions read_solver(const JsonField& f) {
   f.check_keys({"method", "gradient_tolerance", "max_iterations", "line_search", "mass", "damping",
-                "first_order", "max_steps"});
+                "first_order", "start", "max_steps"});
   SolverOptions s;
   if (auto method = f.find("method")) s.method = method->choice(kMethods);
   if (auto tol = f.find("gradient_tolerance")) s.gradient_tolerance = positive(*tol);
@@ -246,6 +248,7 @@ SolverOptions read_solver(const JsonField& f) {
       damping->fail("expected a number >= 0 or \"auto\", got " + damping->describe());
   }
   if (auto first_order = f.find("first_order")) s.first_order = first_order->boolean();
+  if (auto start = f.find("start")) s.start = start->choice(kStarts);
   if (auto n = f.find("max_steps")) s.max_steps = at_least(*n, 1);
   return s;
 }
@@ -416,6 +419,7 @@ nlohmann::json to_json(const Config& c) {
         {"mass", name_of(s.mass, kMasses)},
         {"damping", s.damping ? nlohmann::json(*s.damping) : nlohmann::json("auto")},
         {"first_order", s.first_order},
+        {"start", name_of(s.start, kStarts)},
         {"max_steps", s.step_limit()}}},
       {"output",
        {{"directory", c.output.directory},

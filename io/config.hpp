@@ -60,6 +60,12 @@ enum class MassSetting {
   Fictitious,  // "fictitious": a mass chosen for the fastest stable relaxation
 };
 
+// "solver.start" (dynamics, second order): the initial velocity.
+enum class StartSetting {
+  SlowManifold,  // "slow_manifold": the overdamped velocity, without the initial layer (default)
+  Rest,          // "rest": v = 0
+};
+
 // "output.format" of the VTK files.
 enum class OutputFormat { Binary /* "binary" */, Ascii /* "ascii" */ };
 
@@ -146,6 +152,7 @@ struct SolverOptions {
                                          // 1 / time
   bool first_order = false;              // "first_order", default false: integrate the
                                          // first-order (gradient flow) system instead
+  StartSetting start = StartSetting::SlowManifold;  // "start", default "slow_manifold"
   std::optional<int> max_steps;          // "max_steps", >= 1: time steps (dynamics) or leapfrog
                                          // iterations (kinetic-damping); default: step_limit()
   // max_steps, or its default for the method: 5000 time steps of damped

@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "integrators/dynamics.hpp"
+#include "integrators/dynamics_system.hpp"
 #include "integrators/newton.hpp"
+#include "integrators/objective_evaluator.hpp"
 #include "toy_objectives.hpp"
 
 using namespace xshell;
@@ -168,6 +170,64 @@ TEST_CASE("damped dynamics near the column's saddle") {
     REQUIRE(run.result.status == DynamicsStatus::Converged);
     CHECK(column.get()[middle] == 0.0);
     CHECK_FALSE(run.result.stable);
+  }
+}
+
+// A chain in tension: its Hessian is positive definite from the start.
+StencilObjective make_taut_chain() {
+  ChainOptions o;
+  o.span_ratio = 1.05;
+  return make_chain(o);
+}
+
+TEST_CASE("the overdamped velocity puts the second-order form on its slow manifold") {
+  StencilObjective chain = make_taut_chain();
+  ObjectiveEvaluator evaluator(chain);
+  evaluator.sync();
+  const Eigen::Index n = chain.size();
+  REQUIRE(evaluator.gradient().norm() > 0.0);
+  Damping damping;  // C = a M + b H, positive definite (H is at this start)
+  damping.mass_coefficient = 0.5;
+  damping.stiffness_coefficient = 0.2;
+  damping.stiffness = chain.hessian();
+  DynamicsSystem system(evaluator, DynamicsForm::SecondOrder, chain.mass(), damping);
+  Eigen::VectorXd y(2 * n);
+  y.head(n) = chain.get();
+  y.tail(n) = system.overdamped_velocity(0.0);
+  const Eigen::VectorXd yp = system.consistent_derivatives(y, 0.0);
+  const double scale = evaluator.gradient().cwiseQuotient(chain.mass()).norm();
+  CHECK((yp.head(n) - y.tail(n)).norm() == 0.0);  // q' = v
+  CHECK(yp.tail(n).norm() <= 1e-10 * scale);      // v' = 0: no initial layer
+  // With inertia 1/T the acceleration is v / T instead.
+  y.tail(n) = system.overdamped_velocity(0.0, 2.0);
+  const Eigen::VectorXd limited = system.consistent_derivatives(y, 0.0);
+  CHECK((limited.tail(n) - 2.0 * y.tail(n)).norm() <= 1e-10 * scale);
+  // From rest the whole force accelerates: v' = -M^-1 grad E.
+  y.tail(n).setZero();
+  const Eigen::VectorXd from_rest = system.consistent_derivatives(y, 0.0);
+  CHECK((from_rest.tail(n) + evaluator.gradient().cwiseQuotient(chain.mass())).norm() <= 1e-12 * scale);
+}
+
+TEST_CASE("damped dynamics from the slow manifold: moving at the start, same equilibrium") {
+  NewtonOptions newton;
+  newton.gradient_tolerance = 1e-10;
+  StencilObjective reference = make_taut_chain();
+  REQUIRE(solve_newton(reference, newton).converged());
+  for (DynamicsStart start : {DynamicsStart::Rest, DynamicsStart::SlowManifold}) {
+    StencilObjective chain = make_taut_chain();
+    DynamicsOptions options = tight(DynamicsForm::SecondOrder, MassModel::Physical);
+    options.start = start;
+    const DynamicsRun run = run_dynamics(chain, options);
+    INFO((start == DynamicsStart::Rest ? "rest" : "slow manifold") << ": " << run.result.reason);
+    REQUIRE(run.result.status == DynamicsStatus::Converged);
+    if (start == DynamicsStart::Rest)
+      CHECK(run.reports.front().kinetic_energy == 0.0);
+    else
+      CHECK(run.reports.front().kinetic_energy > 0.0);
+    CHECK((chain.get() - reference.get()).norm() < 1e-6 * reference.get().norm());
+    const double drop = run.reports.front().energy + run.reports.front().kinetic_energy - run.result.energy;
+    CHECK(drop > 0.0);
+    CHECK(run.max_total_energy_rise() <= 1e-6 * drop);
   }
 }
 

@@ -32,7 +32,7 @@ const json kFull = json::parse(R"({
                {"vertex": 4, "fix": ["z"], "displacement": [0, 0, -1.5]}],
   "loads": {"gravity": [0, 0, -9810], "forces": [{"vertex": 3, "force": [1, 2, 3]}]},
   "solver": {"method": "kinetic-damping", "gradient_tolerance": 1e-8, "max_iterations": 50,
-             "mass": "fictitious", "damping": 0.5, "first_order": true, "max_steps": 700,
+             "mass": "fictitious", "damping": 0.5, "first_order": true, "start": "rest", "max_steps": 700,
              "line_search": "kinsol"},
   "output": {"directory": "/tmp/results", "every": 5, "format": "ascii", "solids": true,
              "progress": false},
@@ -108,6 +108,7 @@ TEST_CASE("config: defaults are filled in") {
   CHECK(c.solver.mass == MassSetting::Physical);
   CHECK_FALSE(c.solver.damping.has_value());
   CHECK_FALSE(c.solver.first_order);
+  CHECK(c.solver.start == StartSetting::SlowManifold);
   CHECK(!c.solver.max_steps);
   CHECK(c.solver.step_limit() == 5000);
   CHECK(c.solver.line_search == LineSearchSetting::Energy);
@@ -153,6 +154,7 @@ TEST_CASE("config: every key is read") {
   CHECK(c.solver.mass == MassSetting::Fictitious);
   CHECK(c.solver.damping == 0.5);
   CHECK(c.solver.first_order);
+  CHECK(c.solver.start == StartSetting::Rest);
   CHECK(c.solver.line_search == LineSearchSetting::Kinsol);
   CHECK(c.solver.step_limit() == 700);
   CHECK(c.output.directory == "/tmp/results");
@@ -202,6 +204,7 @@ TEST_CASE("config: to_json gives the resolved configuration back") {
   const json minimal = to_json(parse(kMinimal));
   CHECK(minimal["linkage"] == "/runs/a/grid.obj");
   CHECK(minimal["solver"]["damping"] == "auto");
+  CHECK(minimal["solver"]["start"] == "slow_manifold");
   CHECK(minimal["output"]["solids"] == "auto");
   CHECK(minimal["supports"] == json::array());
   CHECK(minimal["loads"]["gravity"] == json({0.0, 0.0, 0.0}));
@@ -353,6 +356,8 @@ TEST_CASE("config: bad enum strings list the valid choices") {
                 {"material.cross_section.shape", "\"rectangle\", \"ellipse\""});
   check_message(rejection(with("/output", {{"format", "xml"}})), {"output.format", "\"binary\""});
   check_message(rejection(with("/solver", {{"mass", "real"}})), {"solver.mass", "\"fictitious\""});
+  check_message(rejection(with("/solver", {{"start", "still"}})),
+                {"solver.start", "\"slow_manifold\", \"rest\""});
   check_message(rejection(with("/supports", {{{"vertex", 1}, {"fix", {"x", "rotation"}}}})),
                 {"supports[0].fix[1]: \"rotation\"", "\"opening_angle\""});
 }
