@@ -162,6 +162,10 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
   auto total_factorizations = [&] {
     return s.system.cholesky().stats().factorizations - factorizations_before;
   };
+  // Every iteration starts right after a rebase: here, and after each step
+  // (so that the gradient of the rebased state serves both the convergence
+  // test and the next iteration).
+  objective_.rebase();
   s.evaluator.sync();
   s.evaluator.clear_failures();
   s.system.set_mass(objective_.mass());
@@ -214,8 +218,6 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
 
     const Clock::time_point iteration_start = Clock::now();
     const long factorizations_at_start = total_factorizations();
-    objective_.rebase();
-    s.evaluator.sync();
     const Eigen::VectorXd q0 = objective_.get();
     const Eigen::VectorXd weights = objective_.gradient_weights();
     as_eigen(s.f_scale.get()) = weights.cwiseAbs().cwiseMax(kMinimumScale);
@@ -283,13 +285,16 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
                       "; the state before it is kept";
       break;
     }
-    report.gradient_measure = weighted_max_norm(weights, s.evaluator.gradient());
     report.step_norm = (q - q0).lpNorm<Eigen::Infinity>();
     // KINSOL's own stagnation test (KINScSNorm with unit scaling); KINSOL
     // applies it itself to the steps it takes.
     stagnant = report.energy_line_search &&
                ((q - q0).array().abs() / (1.0 + q.array().abs())).maxCoeff() <=
                    options_.scaled_step_tolerance;
+    // The rebase moves nothing (the energy stays), but re-expresses q.
+    objective_.rebase();
+    s.evaluator.sync();
+    report.gradient_measure = weighted_max_norm(weights, s.evaluator.gradient());
     report.factorizations = total_factorizations() - factorizations_at_start;
     report.shifted = s.system.any_shift();
     report.shift = s.system.max_shift();

@@ -3,7 +3,9 @@
 // One Newton iteration is:
 //   1. objective.rebase()  (re-express the unknowns around the current
 //      configuration; the Hessian formulas of the rod model are exact only
-//      right after it, so it happens before every iteration),
+//      right after it, so every iteration starts right after one: before
+//      the first, and after each step, where the gradient of the rebased
+//      state serves the convergence test and the next iteration alike),
 //   2. one KINSOL iteration on F(q) = grad E(q) (KINSetNumMaxIters(1), one
 //      KINSol call per iteration on the same KINSOL memory) with a fresh
 //      Jacobian (KINSetMaxSetupCalls(1)): KINSOL evaluates F and calls the
@@ -91,7 +93,7 @@ struct NewtonReport {
   int iteration = 0;    // iterations done
   double energy = 0.0;  // after the iteration
   double gradient_measure = 0.0;
-  double step_norm = 0.0;           // max_i |dq_i| of the step taken (unknowns after the rebase)
+  double step_norm = 0.0;           // max_i |dq_i| of the step taken (unknowns before the next rebase)
   long factorizations = 0;          // numeric Cholesky factorizations in this iteration
   bool shifted = false;             // the Hessian was indefinite and had to be shifted
   bool energy_line_search = false;  // the step was globalized on the energy (not by KINSOL)
