@@ -21,6 +21,7 @@
 //                [--grids 4,8,14,25,44] [--no-solve] [--solvers] [--kinetic-limit N]
 //                [--csv FILE] [--data DIR]
 #include <CLI/CLI.hpp>
+#include <dlfcn.h>
 #include <sys/resource.h>
 #include <time.h>
 #include <sys/wait.h>
@@ -159,6 +160,14 @@ BenchResult from_csv(const std::string& line) {
   r.solve_factorization_ms = d(f[30]);
   r.solve_rest_ms = d(f[31]);
   return r;
+}
+
+// The file of the BLAS that CHOLMOD calls (where dsyrk_ resolves).
+std::string loaded_blas() {
+  void* symbol = dlsym(RTLD_DEFAULT, "dsyrk_");
+  Dl_info info{};
+  if (symbol == nullptr || dladdr(symbol, &info) == 0 || info.dli_fname == nullptr) return "unknown";
+  return info.dli_fname;
 }
 
 double median(std::vector<double> v) {
@@ -524,6 +533,7 @@ int main(int argc, char** argv) {
               "medians; rest: iteration minus its Hessian and factorizations; it/f: iteration / its factorizations (wall), cpu: "
               "the same in CPU time\n",
               cases.size(), reps, threads, std::getenv("OMP_WAIT_POLICY"));
+  std::printf("BLAS: %s\n", loaded_blas().c_str());
   std::printf("%-24s %3s %2s %7s %9s %9s %9s %9s %9s %7s %5s %6s %6s %4s %8s %7s  %s\n", "case", "n_s", "g", "free",
               "H nnz", "E+grad", "Hessian", "factor", "iter", "rest", "f/it", "it/f", "cpu", "its", "solve", "MB", "status");
   std::ofstream out(csv);

@@ -6,6 +6,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libsundials-dev libsuitesparse-dev libvtk9-dev
   doctest-dev nlohmann-json3-dev libcli11-dev libspectra-dev
+  libopenblas0-openmp
   xvfb xauth
   clang libclang-rt-14-dev
   python3-matplotlib
