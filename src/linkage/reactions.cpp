@@ -57,15 +57,10 @@ std::vector<SupportReaction> support_reactions(const LinkageProblem& problem) {
       }
       continue;
     }
-    // (Named variables, not a structured binding: the lambdas below capture
-    // them, which C++17 does not allow for bindings; clang refuses it.)
-    const std::pair<int, bool> end_of = l.free_end(support.vertex);
-    const int s = end_of.first;
-    const bool at_start = end_of.second;
+    const RodLinkage::FreeEnd f = l.free_end(support.vertex);
+    const int s = f.segment, end = f.end_node, next = f.next_node, edge = f.edge;
+    const bool at_start = f.at_start;
     const ElasticRod& rod = l.segment(s);
-    const int end = at_start ? 0 : rod.num_edges();
-    const int next = at_start ? 1 : rod.num_edges() - 1;
-    const int edge = at_start ? 0 : rod.num_edges() - 1;
     auto reduced_gradient = [&](int full) { return g[l.reduced_index(s, full)]; };
     auto fixed = [&](int full) {
       const int i = l.reduced_index(s, full);

@@ -237,19 +237,27 @@ void RodLinkage::restore(const LinkageState& state) {
   set_dofs(dofs());
 }
 
-std::pair<int, bool> RodLinkage::free_end(int vertex) const {
+RodLinkage::FreeEnd RodLinkage::free_end(int vertex) const {
   for (int s = 0; s < num_segments(); ++s)
     for (int side = 0; side < 2; ++side)
-      if (topology_.segments[s].vertex[side] == vertex && topology_.segments[s].joint[side] < 0)
-        return {s, side == 0};
+      if (topology_.segments[s].vertex[side] == vertex && topology_.segments[s].joint[side] < 0) {
+        const int n = rods_[s].num_edges();
+        FreeEnd f;
+        f.segment = s;
+        f.at_start = side == 0;
+        f.end_node = f.at_start ? 0 : n;
+        f.next_node = f.at_start ? 1 : n - 1;
+        f.edge = f.at_start ? 0 : n - 1;
+        return f;
+      }
   throw std::invalid_argument("vertex " + std::to_string(vertex) + " is not a free end");
 }
 
 Eigen::Vector3d RodLinkage::vertex_position(int vertex) const {
   const int j = topology_.joint_of_vertex[vertex];
   if (j >= 0) return joints_[j].position();
-  const auto [s, at_start] = free_end(vertex);
-  return rods_[s].nodes()[at_start ? 0 : rods_[s].num_edges()];
+  const FreeEnd f = free_end(vertex);
+  return rods_[f.segment].nodes()[f.end_node];
 }
 
 void RodLinkage::update_source_frames() {

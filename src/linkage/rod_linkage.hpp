@@ -144,8 +144,16 @@ class RodLinkage {
   Eigen::VectorXd full_velocity(int s, const Eigen::VectorXd& reduced_velocity) const;
   // Where each vertex sits: a joint's position, a free end's end node.
   Eigen::Vector3d vertex_position(int vertex) const;
-  // For a free-end vertex: its segment and whether the end is the segment's start.
-  std::pair<int, bool> free_end(int vertex) const;
+  // A free-end vertex's place in its segment: the end node, the node after
+  // it (inside the segment) and the edge between them.
+  struct FreeEnd {
+    int segment = -1;
+    bool at_start = true;  // the end is the segment's first node
+    int end_node = 0;
+    int next_node = 0;
+    int edge = 0;
+  };
+  FreeEnd free_end(int vertex) const;
 
  private:
   // A segment's local reduced unknowns: its free ones, then the 9 of the

@@ -92,9 +92,8 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
         if (held[c]) displaced[o + c] = l.graph().vertices[support.vertex][c] + support.displacement[c];
       continue;
     }
-    const auto [s, at_start] = l.free_end(support.vertex);
-    const int end = at_start ? 0 : l.segment(s).num_edges();
-    const int next = at_start ? 1 : l.segment(s).num_edges() - 1;
+    const RodLinkage::FreeEnd f = l.free_end(support.vertex);
+    const int s = f.segment, end = f.end_node, next = f.next_node;
     const Eigen::VectorXd& input = l.input_segment_dofs()[s];
     for (int node : {end, next}) {
       if (node == next && !clamped) continue;
@@ -132,14 +131,9 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
         }
         continue;
       }
-      // (Named variables, not a structured binding: lambdas capture them.)
-      const std::pair<int, bool> end_of = l.free_end(support.vertex);
-      const int s = end_of.first;
-      const bool at_start = end_of.second;
+      const RodLinkage::FreeEnd f = l.free_end(support.vertex);
+      const int s = f.segment, end = f.end_node, next = f.next_node, edge = f.edge;
       const ElasticRod& rod = l.segment(s);
-      const int end = at_start ? 0 : rod.num_edges();
-      const int next = at_start ? 1 : rod.num_edges() - 1;
-      const int edge = at_start ? 0 : rod.num_edges() - 1;
       auto fix_full = [&](int full) {
         const int r = l.reduced_index(s, full);
         if (r < 0)
@@ -188,9 +182,8 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
     if (j >= 0) {
       point_forces_.segment<3>(l.joint_dof_offset(j) + kPosition) += load.force;
     } else {
-      const auto [s, at_start] = l.free_end(load.vertex);
-      const int end = at_start ? 0 : l.segment(s).num_edges();
-      segment_forces_[s].segment<3>(3 * end) += load.force;
+      const RodLinkage::FreeEnd f = l.free_end(load.vertex);
+      segment_forces_[f.segment].segment<3>(3 * f.end_node) += load.force;
     }
   }
   // Point forces act on joint positions, which the input fixes: the
