@@ -1,6 +1,5 @@
 #include "constrained_newton.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -11,21 +10,16 @@
 #include "descent_step.hpp"
 #include "objective_evaluator.hpp"
 #include "shifted_factorization.hpp"
+#include "wall_clock.hpp"
 
 namespace xshell {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 std::string scientific(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3e", value);
   return text;
-}
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
 struct Backtrack {

@@ -1,7 +1,6 @@
 #include "deployment.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -12,6 +11,7 @@
 #include "constrained_newton.hpp"
 #include "constrained_objective.hpp"
 #include "linkage_objective.hpp"
+#include "wall_clock.hpp"
 
 namespace xshell {
 
@@ -28,12 +28,6 @@ const char* to_string(DeploymentStatus status) {
 }
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // Step of the central difference in the prescribed angles (radians): the
 // truncation error h^2 E''' / 6 and the round-off eps E / h are both near

@@ -3,7 +3,6 @@
 #include <ida/ida.h>
 #include <ida/ida_ls.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +13,7 @@
 #include "newton.hpp"
 #include "objective_evaluator.hpp"
 #include "sundials_handles.hpp"
+#include "wall_clock.hpp"
 
 namespace xshell {
 
@@ -36,8 +36,6 @@ const char* to_string(DynamicsStatus status) {
 }
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 std::string scientific(double value) {
   char text[32];
@@ -556,7 +554,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
     result.stable = is_positive_definite(system.cholesky(), objective.hessian());
   result.factorizations = estimator.stats().factorizations +
                           system.cholesky().stats().factorizations + extra_factorizations;
-  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  result.seconds = seconds_since(start);
   return result;
 }
 

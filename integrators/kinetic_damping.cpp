@@ -1,7 +1,6 @@
 #include "kinetic_damping.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -10,6 +9,7 @@
 #include "mass_and_damping.hpp"
 #include "objective_evaluator.hpp"
 #include "shifted_factorization.hpp"
+#include "wall_clock.hpp"
 
 namespace xshell {
 
@@ -31,13 +31,7 @@ const char* to_string(KineticDampingStatus status) {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 constexpr double kTimeStep = 1.0;  // dt: the masses scale with dt^2, so its value is immaterial
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // Moves the objective to q and returns E there, or NaN when q is not a valid
 // configuration (set() threw std::domain_error; `message` says why).

@@ -3,7 +3,6 @@
 #include <kinsol/kinsol.h>
 #include <kinsol/kinsol_ls.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -13,6 +12,7 @@
 #include "newton_system.hpp"
 #include "objective_evaluator.hpp"
 #include "sundials_handles.hpp"
+#include "wall_clock.hpp"
 
 namespace xshell {
 
@@ -36,16 +36,10 @@ const char* to_string(NewtonStatus status) {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 std::string scientific(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3e", value);
   return text;
-}
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
 // Smallest function scale passed to KINSOL, which requires positive scales;

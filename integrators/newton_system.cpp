@@ -3,14 +3,10 @@
 #include <sundials/sundials_linearsolver.h>
 
 #include <algorithm>
-#include <chrono>
+
+#include "wall_clock.hpp"
 
 namespace xshell {
-
-namespace {
-using Clock = std::chrono::steady_clock;
-double seconds_between(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
-}  // namespace
 
 NewtonSystem::NewtonSystem(ObjectiveEvaluator& evaluator, const ShiftOptions& shift)
     : evaluator_(evaluator), shift_options_(shift) {}
@@ -29,10 +25,10 @@ int NewtonSystem::setup() {
   try {
     const Clock::time_point start = Clock::now();
     const Eigen::SparseMatrix<double>& H = evaluator_.objective().hessian();
+    hessian_seconds_ += seconds_since(start);
     const Clock::time_point assembled = Clock::now();
     last_ = factorize_with_shift(cholesky_, H, mass_, shift_options_);
-    hessian_seconds_ += seconds_between(start, assembled);
-    factorization_seconds_ += seconds_between(assembled, Clock::now());
+    factorization_seconds_ += seconds_since(assembled);
   } catch (...) {
     setup_failed_ = true;
     const int code = evaluator_.fail_with_current_exception();
