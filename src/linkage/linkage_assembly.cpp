@@ -76,6 +76,20 @@ void joint_geometry_derivatives(const Joint& joint, JointGeometryDerivatives& ou
   }
 }
 
+void joint_geometry_jacobian(const Joint& joint, JointGeometryDerivatives& out) {
+  using D = Dual1<6>;
+  D q[9];
+  for (int i = 0; i < 3; ++i) q[i] = D(joint.params()[i]);
+  for (int i = 3; i < 9; ++i) q[i] = D::variable(i - 3, joint.params()[i]);
+  V3<D> e_a, e_b, n;
+  joint.geometry<D>(q, e_a, e_b, n);
+  const D* v[9] = {&e_a.x, &e_a.y, &e_a.z, &e_b.x, &e_b.y, &e_b.z, &n.x, &n.y, &n.z};
+  for (int k = 0; k < 9; ++k) {
+    out.value[k] = v[k]->v;
+    out.jacobian.row(k) = v[k]->g.transpose();
+  }
+}
+
 namespace {
 // dtheta/de and dtheta/dn of a terminal edge's theta (see the header).
 template <class T>
@@ -93,17 +107,51 @@ void theta_gradient(const V3<T>& e, const V3<T>& n, const SourceFrame& source, V
 }
 }  // namespace
 
+namespace {
+
+// Rows 0-5 of a terminal edge's Jacobian: the nodes p -/+ (s/2) e_X.
+void node_jacobian(const JointGeometryDerivatives& geometry, int e0, double s,
+                   Eigen::Matrix<double, 7, 9>& jacobian) {
+  jacobian.setZero();
+  for (int c = 0; c < 3; ++c) {
+    jacobian(c, c) = 1.0;
+    jacobian(3 + c, c) = 1.0;
+    jacobian.block<1, 6>(c, 3) = (-0.5 * s) * geometry.jacobian.row(e0 + c);
+    jacobian.block<1, 6>(3 + c, 3) = (0.5 * s) * geometry.jacobian.row(e0 + c);
+  }
+}
+
+// d u / d params[3..8] for u = (s e_X, n).
+Eigen::Matrix<double, 6, 6> edge_and_normal_jacobian(const JointGeometryDerivatives& geometry, int e0, double s) {
+  Eigen::Matrix<double, 6, 6> ju;
+  for (int c = 0; c < 3; ++c) {
+    ju.row(c) = s * geometry.jacobian.row(e0 + c);
+    ju.row(3 + c) = geometry.jacobian.row(6 + c);
+  }
+  return ju;
+}
+
+}  // namespace
+
+void terminal_edge_jacobian(const JointGeometryDerivatives& geometry, int label, int sign,
+                            const SourceFrame& source, Eigen::Matrix<double, 7, 9>& jacobian) {
+  const double s = static_cast<double>(sign);
+  const int e0 = 3 * label;
+  node_jacobian(geometry, e0, s, jacobian);
+  const V3<double> e(s * geometry.value[e0], s * geometry.value[e0 + 1], s * geometry.value[e0 + 2]);
+  const V3<double> n(geometry.value[6], geometry.value[7], geometry.value[8]);
+  V3<double> ge, gn;
+  theta_gradient(e, n, source, ge, gn);
+  const Eigen::Matrix<double, 6, 1> g(ge.x, ge.y, ge.z, gn.x, gn.y, gn.z);
+  jacobian.block<1, 6>(6, 3) = g.transpose() * edge_and_normal_jacobian(geometry, e0, s);
+}
+
 void terminal_edge_derivatives(const JointGeometryDerivatives& geometry, int label, int sign,
                                const SourceFrame& source, TerminalEdgeDerivatives& out) {
   const double s = static_cast<double>(sign);
   const int e0 = 3 * label;  // rows of e_X in the geometry
-  // Nodes p -/+ (s/2) e_X.
-  out.jacobian.setZero();
+  node_jacobian(geometry, e0, s, out.jacobian);
   for (int c = 0; c < 3; ++c) {
-    out.jacobian(c, c) = 1.0;
-    out.jacobian(3 + c, c) = 1.0;
-    out.jacobian.block<1, 6>(c, 3) = (-0.5 * s) * geometry.jacobian.row(e0 + c);
-    out.jacobian.block<1, 6>(3 + c, 3) = (0.5 * s) * geometry.jacobian.row(e0 + c);
     out.hessians[c] = (-0.5 * s) * geometry.hessians[e0 + c];
     out.hessians[3 + c] = (0.5 * s) * geometry.hessians[e0 + c];
   }
@@ -123,11 +171,7 @@ void terminal_edge_derivatives(const JointGeometryDerivatives& geometry, int lab
     h.row(k) = gu[k]->g.transpose();
   }
   const Eigen::Matrix<double, 6, 6> hu = 0.5 * (h + h.transpose());
-  Eigen::Matrix<double, 6, 6> ju;  // d u / d params[3..8]
-  for (int c = 0; c < 3; ++c) {
-    ju.row(c) = s * geometry.jacobian.row(e0 + c);
-    ju.row(3 + c) = geometry.jacobian.row(6 + c);
-  }
+  const Eigen::Matrix<double, 6, 6> ju = edge_and_normal_jacobian(geometry, e0, s);
   out.jacobian.block<1, 6>(6, 3) = g.transpose() * ju;
   Eigen::Matrix<double, 6, 6> ht = ju.transpose() * hu * ju;
   for (int c = 0; c < 3; ++c) {
@@ -302,14 +346,13 @@ void LinkageAssembly::local_derivatives(const RodLinkage& linkage, int s,
   for (int side = 0; side < 2; ++side) {
     if (plan.joint_local[side] < 0) continue;
     const int edge = terminal_edge_index(rod, side);
-    const Joint& joint = linkage.joint(seg.joint[side]);
     if (with_hessian) {
       terminal_edge_derivatives(joint_geometry_[seg.joint[side]], seg.label[side], seg.sign[side],
                                 rod.source_frames()[edge], w.terminal[side]);
       w.jacobian[side] = w.terminal[side].jacobian;
     } else {
-      terminal_edge_jacobian(joint, seg.label[side], seg.sign[side], rod.source_frames()[edge], rod.thetas()[edge],
-                             w.jacobian[side]);
+      terminal_edge_jacobian(joint_geometry_[seg.joint[side]], seg.label[side], seg.sign[side],
+                             rod.source_frames()[edge], w.jacobian[side]);
     }
   }
 
@@ -362,10 +405,14 @@ void LinkageAssembly::gradient(const RodLinkage& linkage, const std::vector<Eige
   prepare_scratch();
   const int ns = static_cast<int>(plans_.size());
   out.resize(num_dofs_);
+  const int nj = linkage.num_joints();
+  joint_geometry_.resize(nj);
   // One parallel region per evaluation (its fork and barriers are the
   // overhead); small linkages stay serial.
 #pragma omp parallel if (ns >= kMinParallelSegments)
   {
+#pragma omp for schedule(dynamic, 16)
+    for (int j = 0; j < nj; ++j) joint_geometry_jacobian(linkage.joint(j), joint_geometry_[j]);
 #pragma omp for schedule(dynamic, 8)
     for (int s = 0; s < ns; ++s) {
       Scratch& w = scratch_for_thread();

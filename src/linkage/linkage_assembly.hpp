@@ -49,6 +49,10 @@ struct JointGeometryDerivatives {
   Eigen::Matrix<double, 6, 6> hessians[9];    // d2 v_k / d params[3..8]^2
 };
 void joint_geometry_derivatives(const Joint& joint, JointGeometryDerivatives& out);
+// The same values and Jacobian by first-order AD (hessians untouched): what
+// gradients need.
+void joint_geometry_jacobian(const Joint& joint, JointGeometryDerivatives& out);
+
 
 // Jacobian and Hessians of a terminal edge's 7 values (first node, second
 // node, theta) with respect to the joint's 9 parameters, as
@@ -68,6 +72,10 @@ struct TerminalEdgeDerivatives {
 };
 void terminal_edge_derivatives(const JointGeometryDerivatives& geometry, int label, int sign,
                                const SourceFrame& source, TerminalEdgeDerivatives& out);
+// Its Jacobian alone, from the geometry's values and Jacobian (as
+// joint_geometry_jacobian gives them): the gradient's chain rule.
+void terminal_edge_jacobian(const JointGeometryDerivatives& geometry, int label, int sign,
+                            const SourceFrame& source, Eigen::Matrix<double, 7, 9>& jacobian);
 
 class LinkageAssembly {
  public:
@@ -125,7 +133,7 @@ class LinkageAssembly {
   std::vector<long> gradient_sources_begin_, gradient_sources_;
   std::vector<double> hessian_contributions_, gradient_contributions_;
   std::vector<Scratch> scratch_;
-  std::vector<JointGeometryDerivatives> joint_geometry_;  // per joint, for the Hessian
+  std::vector<JointGeometryDerivatives> joint_geometry_;  // per joint, for the gradient or Hessian
   // The matrix hessian() wrote last (its pattern is pattern_ unless changed since).
   const Eigen::SparseMatrix<double>* last_output_ = nullptr;
   const double* last_values_ = nullptr;

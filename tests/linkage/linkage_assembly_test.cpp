@@ -115,8 +115,11 @@ TEST_CASE("Terminal-edge derivatives from the joint's geometry equal AD over the
     JointParams p = joint.params();
     p.segment<3>(kOmega) = random_vector(3, rng, 0.4);  // away from the fold too
     joint.set_params(p);
-    JointGeometryDerivatives geometry;
+    JointGeometryDerivatives geometry, first_order;
     joint_geometry_derivatives(joint, geometry);
+    joint_geometry_jacobian(joint, first_order);
+    CHECK((first_order.value - geometry.value).cwiseAbs().maxCoeff() <= 1e-15);
+    CHECK((first_order.jacobian - geometry.jacobian).cwiseAbs().maxCoeff() <= 1e-14);
     for (int label = 0; label < 2; ++label)
       for (int sign : {-1, 1}) {
         const Eigen::Vector3d t = sign * joint.tangent(label);
@@ -135,18 +138,21 @@ TEST_CASE("Terminal-edge derivatives from the joint's geometry equal AD over the
           h_fast[k].block<6, 6>(3, 3) = fast.hessians[k];
         }
         terminal_edge_jacobian(joint, label, sign, source, hint, j_first);
+        Eigen::Matrix<double, 7, 9> j_geometry;
+        terminal_edge_jacobian(first_order, label, sign, source, j_geometry);
         const double jscale = j_ref.cwiseAbs().maxCoeff();
         CHECK((j_fast - j_ref).cwiseAbs().maxCoeff() <= 1e-13 * jscale);
         CHECK((j_first - j_ref).cwiseAbs().maxCoeff() <= 1e-13 * jscale);
+        CHECK((j_geometry - j_ref).cwiseAbs().maxCoeff() <= 1e-13 * jscale);
         for (int k = 0; k < 7; ++k) {
           const double hscale = std::max(h_ref[k].cwiseAbs().maxCoeff(), 1e-300);
           CHECK((h_fast[k] - h_ref[k]).cwiseAbs().maxCoeff() <= 1e-12 * std::max(hscale, 1e-3));
           compared += 81;
         }
-        compared += 2 * 63;
+        compared += 3 * 63;
       }
   }
-  CHECK(compared == 20 * 4 * (7 * 81 + 2 * 63));
+  CHECK(compared == 20 * 4 * (7 * 81 + 3 * 63));
 }
 
 TEST_CASE("Assembly is deterministic: 1 and 2 threads give bit-identical results") {
