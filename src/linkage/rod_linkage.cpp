@@ -1,8 +1,10 @@
 #include "rod_linkage.hpp"
 
 #include <cstdio>
+#include <exception>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "edge_vector_conversion.hpp"
 #include "model_error.hpp"
@@ -14,6 +16,25 @@ std::string degrees_text(double degrees) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.3g", degrees);
   return buffer;
+}
+
+// Below this many segments a per-segment loop stays on one thread.
+constexpr int kMinParallelSegments = 32;
+
+// f(s) for every segment, in parallel; the first exception is rethrown.
+template <class F>
+void for_each_segment(int count, F&& f) {
+  std::exception_ptr failure;
+#pragma omp parallel for schedule(static) if (count >= kMinParallelSegments)
+  for (int s = 0; s < count; ++s) {
+    try {
+      f(s);
+    } catch (...) {
+#pragma omp critical(xshell_segment_failure)
+      if (!failure) failure = std::current_exception();
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
 }
 
 // Theta that turns an edge's reference frame so that d2 = n.
@@ -184,7 +205,7 @@ void RodLinkage::set_dofs(const Eigen::VectorXd& r) {
       throw std::domain_error("joint at vertex " + std::to_string(topology_.joints[j].vertex) + ": " + problem);
     joints_[j].set_params(p);
   }
-  for (int s = 0; s < num_segments(); ++s) {
+  for_each_segment(num_segments(), [&](int s) {
     ElasticRod& rod = rods_[s];
     Eigen::VectorXd q = rod.dofs();
     for (int k = 0; k < q.size(); ++k)
@@ -198,7 +219,7 @@ void RodLinkage::set_dofs(const Eigen::VectorXd& r) {
       q[rod.theta_dof(node)] = t.theta;
     }
     rod.set_dofs(q);
-  }
+  });
 }
 
 LinkageState RodLinkage::state() const {
@@ -261,7 +282,7 @@ Eigen::Vector3d RodLinkage::vertex_position(int vertex) const {
 }
 
 void RodLinkage::update_source_frames() {
-  for (ElasticRod& rod : rods_) rod.update_source_frames();
+  for_each_segment(num_segments(), [&](int s) { rods_[s].update_source_frames(); });
   record_theta_hints();
 }
 
@@ -270,8 +291,12 @@ void RodLinkage::fold_joints() {
 }
 
 RodEnergy RodLinkage::energy() const {
+  // Per segment in parallel, summed in segment order: the same bits on any
+  // number of threads.
+  std::vector<RodEnergy> parts(rods_.size());
+  for_each_segment(num_segments(), [&](int s) { parts[s] = rods_[s].energy(); });
   RodEnergy e;
-  for (const ElasticRod& rod : rods_) e += rod.energy();
+  for (const RodEnergy& part : parts) e += part;
   return e;
 }
 

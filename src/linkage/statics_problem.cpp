@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "model_error.hpp"
 
@@ -186,6 +187,8 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
       segment_forces_[f.segment].segment<3>(3 * f.end_node) += load.force;
     }
   }
+  for (const Eigen::VectorXd& f : segment_forces_) has_segment_loads_.push_back(!f.isZero(0.0));
+  has_point_loads_ = !point_forces_.isZero(0.0);
   // Point forces act on joint positions, which the input fixes: the
   // graph's vertices.
   input_dofs_ = Eigen::VectorXd::Zero(l.num_dofs());
@@ -209,9 +212,15 @@ void LinkageProblem::set_free_dofs(const Eigen::VectorXd& q) {
 EnergyReport LinkageProblem::energy() const {
   const RodEnergy e = linkage_.energy();
   EnergyReport report{e.stretching, e.bending, e.twisting, 0.0};
-  for (int s = 0; s < linkage_.num_segments(); ++s)
-    report.external -= segment_forces_[s].dot(linkage_.segment(s).dofs() - linkage_.input_segment_dofs()[s]);
-  report.external -= point_forces_.dot(linkage_.dofs() - input_dofs_);
+  // Work of the dead loads: per segment in parallel, summed in order.
+  const int ns = linkage_.num_segments();
+  std::vector<double> work(ns, 0.0);
+#pragma omp parallel for schedule(static) if (ns >= 32)
+  for (int s = 0; s < ns; ++s)
+    if (has_segment_loads_[s])
+      work[s] = segment_forces_[s].dot(linkage_.segment(s).dofs() - linkage_.input_segment_dofs()[s]);
+  for (double w : work) report.external -= w;
+  if (has_point_loads_) report.external -= point_forces_.dot(linkage_.dofs() - input_dofs_);
   return report;
 }
 

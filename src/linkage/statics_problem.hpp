@@ -137,6 +137,8 @@ class LinkageProblem {
   int default_support_ = -1;
   std::vector<Eigen::VectorXd> segment_forces_;  // dead loads on full variables
   Eigen::VectorXd point_forces_;                 // on reduced unknowns
+  std::vector<char> has_segment_loads_;          // per segment: any nonzero load
+  bool has_point_loads_ = false;
   Eigen::VectorXd input_dofs_;  // joint positions at the input (the rest is unused)
   double length_scale_ = 1.0, force_scale_ = 1.0;
   Eigen::SparseMatrix<double> hessian_;
