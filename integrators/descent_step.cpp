@@ -40,6 +40,7 @@ DescentStepResult energy_descent_step(ObjectiveEvaluator& evaluator, CholeskySol
     if (energy <= e0 + options.sufficient_decrease * alpha * slope + slack) {
       result.accepted = true;
       result.step_fraction = alpha;
+      result.energy = energy;
       return result;
     }
     if (k == 0 && std::abs(energy - e0) <= options.endgame_energy_change * std::abs(e0)) {
@@ -49,6 +50,7 @@ DescentStepResult energy_descent_step(ObjectiveEvaluator& evaluator, CholeskySol
           (w.array() * g.array()).matrix().norm() < (w.array() * g0.array()).matrix().norm()) {
         result.accepted = true;
         result.step_fraction = alpha;
+        result.energy = energy;
         return result;
       }
     }

@@ -41,6 +41,7 @@ struct DescentStepOptions {
 struct DescentStepResult {
   bool accepted = false;
   double step_fraction = 0.0;       // alpha of the accepted step q0 + alpha p
+  double energy = 0.0;              // E(q0 + alpha p) when accepted
   int trials = 0;                   // energy evaluations attempted
   int rejected_configurations = 0;  // trial points that were invalid or NaN
 };

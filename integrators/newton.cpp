@@ -231,6 +231,7 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
     int flag = KINSol(s.kinsol.get(), s.u.get(), KIN_LINESEARCH, s.u_scale.get(), s.f_scale.get());
     rethrow_if_fatal();
     report.energy_line_search = false;
+    double accepted_energy = 0.0;  // known after an energy line search step
     if (flag == KIN_LSETUP_FAIL && s.system.deferred()) {
       // The (possibly shifted) factorization is ready: step on the energy.
       report.energy_line_search = true;
@@ -253,6 +254,7 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
         break;
       }
       as_eigen(s.u.get()) = s.evaluator.objective().get();
+      accepted_energy = step.energy;
       flag = KIN_SUCCESS;
     }
     const bool accepted =
@@ -267,7 +269,7 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
     s.evaluator.move_to(q);
 
     report.iteration = iteration + 1;
-    report.energy = objective_.energy();
+    report.energy = report.energy_line_search ? accepted_energy : objective_.energy();
     if (!std::isfinite(report.energy)) {
       // KINSOL's line search watches the gradient only: a step to a point
       // with a finite gradient but no finite energy is not a good state.
