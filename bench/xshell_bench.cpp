@@ -86,6 +86,12 @@ struct BenchResult {
   // numeric factorizations, and everything else (evaluations, line search,
   // solves, rebase, bookkeeping).
   double solve_hessian_ms = NAN, solve_factorization_ms = NAN, solve_rest_ms = NAN;
+  // Hessian assembly on one thread, timed in the same process alternately
+  // with hessian_ms's thread count (the speedup is their ratio of medians).
+  double hessian_1thread_ms = NAN, hessian_speedup = NAN;
+  // The solve's iterations over the factorizations they performed, both as
+  // timed inside the solve (cold caches and all).
+  double iteration_over_solve_factorizations = NAN;
 };
 
 // What run_case measures besides the factorization costs.
@@ -101,7 +107,8 @@ const char* kColumns =
     "hessian_ms,factorization_ms,iteration_ms,factorizations_per_iteration,iteration_over_factorizations,"
     "newton_iterations,solve_s,status,gradient_measure,peak_rss_mb,hessian_cpu_ms,factorization_cpu_ms,"
     "iteration_cpu_ms,iteration_over_factorizations_cpu,dynamics_steps,dynamics_s,dynamics_status,"
-    "kinetic_iterations,kinetic_s,kinetic_status,solve_hessian_ms,solve_factorization_ms,solve_rest_ms";
+    "kinetic_iterations,kinetic_s,kinetic_status,solve_hessian_ms,solve_factorization_ms,solve_rest_ms,"
+    "hessian_1thread_ms,hessian_speedup,iteration_over_solve_factorizations";
 
 std::string to_csv(const BenchResult& r) {
   std::ostringstream o;
@@ -113,7 +120,8 @@ std::string to_csv(const BenchResult& r) {
     << r.gradient_measure << ',' << r.peak_rss_mb << ',' << r.hessian_cpu_ms << ',' << r.factorization_cpu_ms << ','
     << r.iteration_cpu_ms << ',' << r.iteration_over_factorizations_cpu << ',' << r.dynamics_steps << ','
     << r.dynamics_s << ',' << r.dynamics_status << ',' << r.kinetic_iterations << ',' << r.kinetic_s << ','
-    << r.kinetic_status << ',' << r.solve_hessian_ms << ',' << r.solve_factorization_ms << ',' << r.solve_rest_ms;
+    << r.kinetic_status << ',' << r.solve_hessian_ms << ',' << r.solve_factorization_ms << ',' << r.solve_rest_ms
+    << ',' << r.hessian_1thread_ms << ',' << r.hessian_speedup << ',' << r.iteration_over_solve_factorizations;
   return o.str();
 }
 
@@ -122,7 +130,7 @@ BenchResult from_csv(const std::string& line) {
   std::stringstream in(line);
   for (std::string item; std::getline(in, item, ',');) f.push_back(item);
   BenchResult r;
-  if (f.size() != 32) {
+  if (f.size() != 35) {
     r.status = "failed";
     return r;
   }
@@ -159,6 +167,9 @@ BenchResult from_csv(const std::string& line) {
   r.solve_hessian_ms = d(f[29]);
   r.solve_factorization_ms = d(f[30]);
   r.solve_rest_ms = d(f[31]);
+  r.hessian_1thread_ms = d(f[32]);
+  r.hessian_speedup = d(f[33]);
+  r.iteration_over_solve_factorizations = d(f[34]);
   return r;
 }
 
@@ -315,6 +326,19 @@ BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
     sink += problem.free_gradient()[0];
   });
   r.hessian_ms = median_ms(reps, [&] { sink += problem.free_hessian().valuePtr()[0]; }, &r.hessian_cpu_ms);
+#ifdef _OPENMP
+  if (r.threads > 1) {
+    std::vector<double> one, all;
+    for (int i = 0; i < reps; ++i) {
+      omp_set_num_threads(1);
+      one.push_back(median_ms(1, [&] { sink += problem.free_hessian().valuePtr()[0]; }));
+      omp_set_num_threads(r.threads);
+      all.push_back(median_ms(1, [&] { sink += problem.free_hessian().valuePtr()[0]; }));
+    }
+    r.hessian_1thread_ms = median(one);
+    r.hessian_speedup = median(one) / median(all);
+  }
+#endif
   const Eigen::SparseMatrix<double> H = problem.free_hessian();
   r.hessian_nonzeros = H.nonZeros();
   r.factorization_ms = factorization_ms(H, problem.free_mass(), reps, &r.factorization_cpu_ms);
@@ -328,7 +352,7 @@ BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
     NewtonSolver solver(objective, options);
     std::vector<double> seconds, cpu, hessian_s, factorization_s, rest_s;
     long factorizations = 0;
-    double total = 0.0, total_cpu = 0.0, last_cpu = 0.0;
+    double total = 0.0, total_cpu = 0.0, last_cpu = 0.0, total_factorization = 0.0;
     NewtonCallbacks callbacks;
     callbacks.on_iteration = [&](const NewtonReport& report) {
       const double now = cpu_seconds();
@@ -339,6 +363,7 @@ BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
         rest_s.push_back(report.seconds - report.hessian_seconds - report.factorization_seconds);
         cpu.push_back(now - last_cpu);  // includes the driver's bookkeeping between reports
         total += report.seconds;
+        total_factorization += report.factorization_seconds;
         total_cpu += now - last_cpu;
         factorizations += report.factorizations;
       }
@@ -356,6 +381,7 @@ BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
       r.solve_rest_ms = 1e3 * median(rest_s);
       r.factorizations_per_iteration = double(factorizations) / double(seconds.size());
       r.iteration_over_factorizations = 1e3 * total / (double(factorizations) * r.factorization_ms);
+      r.iteration_over_solve_factorizations = total / total_factorization;
       r.iteration_cpu_ms = 1e3 * median(cpu);
       r.iteration_over_factorizations_cpu = 1e3 * total_cpu / (double(factorizations) * r.factorization_cpu_ms);
     }
@@ -408,11 +434,11 @@ BenchResult run_isolated(const BenchCase& c, const BenchSettings& settings) {
 }
 
 void print_row(const BenchResult& r) {
-  std::printf("%-24s %3d %2s %7ld %9ld %9.2f %9.2f %9.2f %9.2f %7.2f %5.2f %6.2f %6.2f %4ld %8.2f %7.0f  %s\n",
+  std::printf("%-24s %3d %2s %7ld %9ld %9.2f %9.2f %5.2f %9.2f %9.2f %7.2f %5.2f %6.2f %6.2f %6.2f %4ld %8.2f %7.0f  %s\n",
               r.name.c_str(), r.subdivisions, r.gravity ? "g" : "-", r.free_unknowns, r.hessian_nonzeros,
-              r.energy_gradient_ms, r.hessian_ms, r.factorization_ms, r.iteration_ms, r.solve_rest_ms,
-              r.factorizations_per_iteration,
-              r.iteration_over_factorizations, r.iteration_over_factorizations_cpu, r.iterations, r.solve_s,
+              r.energy_gradient_ms, r.hessian_ms, r.hessian_speedup, r.factorization_ms, r.iteration_ms, r.solve_rest_ms,
+              r.factorizations_per_iteration, r.iteration_over_factorizations, r.iteration_over_solve_factorizations,
+              r.iteration_over_factorizations_cpu, r.iterations, r.solve_s,
               r.peak_rss_mb, r.status.c_str());
   std::fflush(stdout);
 }
@@ -530,12 +556,14 @@ int main(int argc, char** argv) {
   threads = omp_get_max_threads();
 #endif
   std::printf("xshell_bench: %zu cases, %d repetitions, %d threads (OMP_WAIT_POLICY=%s); times in ms (solve in s), "
-              "medians; rest: iteration minus its Hessian and factorizations; it/f: iteration / its factorizations (wall), cpu: "
-              "the same in CPU time\n",
+              "medians; H1/Hn: Hessian on 1 thread / on all threads (same process, alternating); rest: iteration minus its Hessian and "
+              "factorizations; it/f: iteration / its factorizations (wall; factorization timed alone), it/fs: the same with "
+              "the factorizations as timed inside the solve, cpu: it/f in CPU time\n",
               cases.size(), reps, threads, std::getenv("OMP_WAIT_POLICY"));
   std::printf("BLAS: %s\n", loaded_blas().c_str());
-  std::printf("%-24s %3s %2s %7s %9s %9s %9s %9s %9s %7s %5s %6s %6s %4s %8s %7s  %s\n", "case", "n_s", "g", "free",
-              "H nnz", "E+grad", "Hessian", "factor", "iter", "rest", "f/it", "it/f", "cpu", "its", "solve", "MB", "status");
+  std::printf("%-24s %3s %2s %7s %9s %9s %9s %5s %9s %9s %7s %5s %6s %6s %6s %4s %8s %7s  %s\n", "case", "n_s", "g",
+              "free", "H nnz", "E+grad", "Hessian", "H1/Hn", "factor", "iter", "rest", "f/it", "it/f", "it/fs", "cpu", "its",
+              "solve", "MB", "status");
   std::ofstream out(csv);
   out << kColumns << "\n";
   std::vector<BenchResult> results;
