@@ -282,17 +282,43 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
     return static_cast<long>(std::lower_bound(begin, end, row) - pattern_.innerIndexPtr());
   };
   const long nnz = pattern_.nonZeros();
-  hessian_sources_begin_.assign(nnz + 1, 0);
   std::vector<long> slot(contribution_entry.size());
+  std::vector<int> sources_of_slot(nnz, 0);
   for (size_t k = 0; k < contribution_entry.size(); ++k) {
     slot[k] = slot_of(contribution_entry[k][0], contribution_entry[k][1]);
-    ++hessian_sources_begin_[slot[k] + 1];
+    ++sources_of_slot[slot[k]];
   }
-  for (long k = 0; k < nnz; ++k) hessian_sources_begin_[k + 1] += hessian_sources_begin_[k];
-  hessian_sources_.resize(contribution_entry.size());
+  // An entry with one contribution is written directly by its segment; the
+  // others are summed from the contribution buffer in segment order.
+  std::vector<long> shared_index(nnz, -1);
+  for (long k = 0; k < nnz; ++k)
+    if (sources_of_slot[k] > 1) {
+      shared_index[k] = static_cast<long>(shared_slots_.size());
+      shared_slots_.push_back(k);
+    }
+  hessian_sources_begin_.assign(shared_slots_.size() + 1, 0);
+  for (long k : shared_slots_) hessian_sources_begin_[shared_index[k] + 1] = sources_of_slot[k];
+  for (size_t i = 0; i < shared_slots_.size(); ++i) hessian_sources_begin_[i + 1] += hessian_sources_begin_[i];
+  hessian_sources_.resize(hessian_sources_begin_.back());
   std::vector<long> fill(hessian_sources_begin_.begin(), hessian_sources_begin_.end() - 1);
-  for (size_t k = 0; k < contribution_entry.size(); ++k) hessian_sources_[fill[slot[k]]++] = static_cast<long>(k);
-  hessian_contributions_.assign(contribution_entry.size(), 0.0);
+  long shared_count = 0;
+  for (SegmentPlan& plan : plans_) {
+    const long first = plan.hessian_begin;
+    std::vector<int> all = std::move(plan.entries);
+    plan.entries.clear();
+    plan.hessian_begin = shared_count;
+    for (size_t i = 0; i < all.size(); ++i) {
+      const long k = slot[first + static_cast<long>(i)];
+      if (shared_index[k] < 0) {
+        plan.direct_entries.push_back(all[i]);
+        plan.direct_slots.push_back(k);
+      } else {
+        plan.entries.push_back(all[i]);
+        hessian_sources_[fill[shared_index[k]]++] = shared_count++;
+      }
+    }
+  }
+  hessian_contributions_.assign(shared_count, 0.0);
 
   gradient_sources_begin_.assign(num_dofs_ + 1, 0);
   for (const SegmentPlan& plan : plans_)
@@ -448,7 +474,7 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
     last_values_ = out.valuePtr();
   }
   double* values = out.valuePtr();
-  const long nnz = pattern_.nonZeros();
+  const long shared = static_cast<long>(shared_slots_.size());
   const int nj = linkage.num_joints();
   joint_geometry_.resize(nj);
   const int ns = static_cast<int>(plans_.size());
@@ -464,13 +490,14 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
       const double* local = w.local_hessian.data();  // column-major, plan.size() square
       double* target = hessian_contributions_.data() + plan.hessian_begin;
       for (size_t i = 0; i < plan.entries.size(); ++i) target[i] = local[plan.entries[i]];
+      for (size_t i = 0; i < plan.direct_entries.size(); ++i) values[plan.direct_slots[i]] = local[plan.direct_entries[i]];
     }
 #pragma omp for schedule(static)
-    for (long k = 0; k < nnz; ++k) {
+    for (long k = 0; k < shared; ++k) {
       double sum = 0.0;
       for (long i = hessian_sources_begin_[k]; i < hessian_sources_begin_[k + 1]; ++i)
         sum += hessian_contributions_[hessian_sources_[i]];
-      values[k] = sum;
+      values[shared_slots_[k]] = sum;
     }
   }
 }

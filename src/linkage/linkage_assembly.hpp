@@ -105,8 +105,14 @@ class LinkageAssembly {
     std::array<int, 2> joint_local{{-1, -1}};    // local offset of each end's joint block, or -1
     std::array<std::array<int, 7>, 2> controlled{};  // full variable of each terminal value, per end
     std::vector<int> global;                     // reduced index of each local unknown
-    std::vector<int> entries;                    // kept local Hessian entries (column-major index)
-    long hessian_begin = 0;                      // their range in the contribution buffer
+    // Kept local Hessian entries (column-major index): those that share
+    // their global entry with other contributions, whose range in the
+    // contribution buffer starts at hessian_begin, and those that are alone
+    // in theirs (written straight to its value slot).
+    std::vector<int> entries;
+    long hessian_begin = 0;
+    std::vector<int> direct_entries;
+    std::vector<long> direct_slots;
     long gradient_begin = 0;                     // local gradient's range in its buffer
     int size() const { return static_cast<int>(global.size()); }
   };
@@ -128,7 +134,9 @@ class LinkageAssembly {
   std::vector<int> free_position_;
   std::vector<SegmentPlan> plans_;
   Eigen::SparseMatrix<double> pattern_;
-  // Gather lists: global entry k sums contributions sources[begin[k]..begin[k+1]).
+  // Gather lists: global entry k (of the gradient, or shared_slots_[k] of
+  // the Hessian) sums contributions sources[begin[k]..begin[k+1]).
+  std::vector<long> shared_slots_;
   std::vector<long> hessian_sources_begin_, hessian_sources_;
   std::vector<long> gradient_sources_begin_, gradient_sources_;
   std::vector<double> hessian_contributions_, gradient_contributions_;
