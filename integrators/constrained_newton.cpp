@@ -53,8 +53,7 @@ Backtrack backtrack(ObjectiveEvaluator& evaluator, const AverageConstraint& cons
     ++result.trials;
     double energy = 0.0;
     try {
-      evaluator.move_to(trial);
-      energy = evaluator.objective().energy();
+      energy = evaluator.energy_at(trial);
     } catch (const std::domain_error& e) {
       evaluator.record(EvaluationFailure::InvalidConfiguration, e.what());
       ++result.rejected;

@@ -21,6 +21,10 @@ void ConstrainedObjective::set(const Eigen::VectorXd& z) {
   inner_.set(offset_ + constraint_.expand(z));
 }
 
+double ConstrainedObjective::set_and_energy(const Eigen::VectorXd& z) {
+  return inner_.set_and_energy(offset_ + constraint_.expand(z));
+}
+
 const Eigen::SparseMatrix<double>& ConstrainedObjective::hessian() {
   hessian_ = constraint_.reduce(inner_.hessian());
   return hessian_;

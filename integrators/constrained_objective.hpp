@@ -26,6 +26,7 @@ class ConstrainedObjective : public Objective {
   Eigen::VectorXd get() const override;
   void set(const Eigen::VectorXd& z) override;
   double energy() const override { return inner_.energy(); }
+  double set_and_energy(const Eigen::VectorXd& z) override;
   Eigen::VectorXd gradient() const override { return constraint_.restrict(inner_.gradient()); }
   const Eigen::SparseMatrix<double>& hessian() override;
   Eigen::VectorXd gradient_weights() const override;

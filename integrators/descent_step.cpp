@@ -24,8 +24,7 @@ DescentStepResult energy_descent_step(ObjectiveEvaluator& evaluator, CholeskySol
     ++result.trials;
     double energy = 0.0;
     try {
-      evaluator.move_to(trial);
-      energy = evaluator.objective().energy();
+      energy = evaluator.energy_at(trial);
     } catch (const std::domain_error& e) {
       evaluator.record(EvaluationFailure::InvalidConfiguration, e.what());
       ++result.rejected_configurations;

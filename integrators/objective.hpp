@@ -29,6 +29,11 @@ class Objective {
 
   // Total energy at the current configuration.
   virtual double energy() const = 0;
+  // set(q), then energy(); an objective may do both in one pass.
+  virtual double set_and_energy(const Eigen::VectorXd& q) {
+    set(q);
+    return energy();
+  }
   // dE/dq at the current configuration (size()).
   virtual Eigen::VectorXd gradient() const = 0;
   // d2E/dq2 at the current configuration: symmetric, both triangles stored,

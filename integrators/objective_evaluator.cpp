@@ -22,6 +22,16 @@ void ObjectiveEvaluator::move_to(const Eigen::Ref<const Eigen::VectorXd>& q) {
   known_ = true;
 }
 
+double ObjectiveEvaluator::energy_at(const Eigen::Ref<const Eigen::VectorXd>& q) {
+  if (known_ && position_.size() == q.size() && position_ == q) return objective_.energy();
+  known_ = false;
+  gradient_valid_ = false;
+  const double energy = objective_.set_and_energy(q);
+  position_ = q;
+  known_ = true;
+  return energy;
+}
+
 const Eigen::VectorXd& ObjectiveEvaluator::gradient() {
   if (!gradient_valid_) {
     gradient_ = objective_.gradient();

@@ -40,6 +40,8 @@ class ObjectiveEvaluator {
   void move_to(const Eigen::Ref<const Eigen::VectorXd>& q);
   // The gradient at the current position (cached until the next move).
   const Eigen::VectorXd& gradient();
+  // Moves to q (as move_to) and returns the energy there.
+  double energy_at(const Eigen::Ref<const Eigen::VectorXd>& q);
 
   // Callback helpers: move to q, then copy the gradient into g. Return 0,
   // 1 (recoverable: invalid or non-finite) or -1 (stored exception).

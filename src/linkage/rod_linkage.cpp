@@ -37,6 +37,14 @@ void for_each_segment(int count, F&& f) {
   if (failure) std::rethrow_exception(failure);
 }
 
+// Segments' energies summed in segment order: the same bits on any number
+// of threads.
+RodEnergy sum_in_order(const std::vector<RodEnergy>& parts) {
+  RodEnergy e;
+  for (const RodEnergy& part : parts) e += part;
+  return e;
+}
+
 // Theta that turns an edge's reference frame so that d2 = n.
 double theta_for_normal(const Frame<double>& ref, const Eigen::Vector3d& n) {
   return std::atan2(-n.dot(ref.d1.values()), n.dot(ref.d2.values()));
@@ -196,7 +204,7 @@ void RodLinkage::record_theta_hints() {
     theta_hints_[s] = {rods_[s].thetas().front(), rods_[s].thetas().back()};
 }
 
-void RodLinkage::set_dofs(const Eigen::VectorXd& r) {
+void RodLinkage::set_dofs(const Eigen::VectorXd& r, RodEnergy* energy) {
   if (r.size() != num_dofs_) throw std::invalid_argument("RodLinkage::set_dofs: wrong size");
   for (int j = 0; j < num_joints(); ++j) {
     const JointParams p = r.segment<9>(joint_offset_[j]);
@@ -205,6 +213,7 @@ void RodLinkage::set_dofs(const Eigen::VectorXd& r) {
       throw std::domain_error("joint at vertex " + std::to_string(topology_.joints[j].vertex) + ": " + problem);
     joints_[j].set_params(p);
   }
+  std::vector<RodEnergy> parts(energy ? rods_.size() : 0);
   for_each_segment(num_segments(), [&](int s) {
     ElasticRod& rod = rods_[s];
     Eigen::VectorXd q = rod.dofs();
@@ -219,7 +228,9 @@ void RodLinkage::set_dofs(const Eigen::VectorXd& r) {
       q[rod.theta_dof(node)] = t.theta;
     }
     rod.set_dofs(q);
+    if (energy) parts[s] = rod.energy();
   });
+  if (energy) *energy = sum_in_order(parts);
 }
 
 LinkageState RodLinkage::state() const {
@@ -291,13 +302,9 @@ void RodLinkage::fold_joints() {
 }
 
 RodEnergy RodLinkage::energy() const {
-  // Per segment in parallel, summed in segment order: the same bits on any
-  // number of threads.
   std::vector<RodEnergy> parts(rods_.size());
   for_each_segment(num_segments(), [&](int s) { parts[s] = rods_[s].energy(); });
-  RodEnergy e;
-  for (const RodEnergy& part : parts) e += part;
-  return e;
+  return sum_in_order(parts);
 }
 
 }  // namespace xshell

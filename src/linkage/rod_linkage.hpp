@@ -108,7 +108,9 @@ class RodLinkage {
   // Throws std::domain_error for a degenerate configuration (a terminal edge
   // of zero length, edge vectors of an edge-vector joint within
   // kMinEdgeVectorAngleDegrees of parallel).
-  void set_dofs(const Eigen::VectorXd& dofs);
+  // With energy, also the elastic energy at the new configuration, in the
+  // same pass over the segments (while each one is in cache).
+  void set_dofs(const Eigen::VectorXd& dofs, RodEnergy* energy = nullptr);
 
   LinkageState state() const;
   // Full variables of every segment in the input configuration (as built),

@@ -209,8 +209,17 @@ void LinkageProblem::set_free_dofs(const Eigen::VectorXd& q) {
   linkage_.set_dofs(r);
 }
 
-EnergyReport LinkageProblem::energy() const {
-  const RodEnergy e = linkage_.energy();
+double LinkageProblem::set_free_dofs_and_energy(const Eigen::VectorXd& q) {
+  Eigen::VectorXd r = linkage_.dofs();
+  for (size_t i = 0; i < free_.size(); ++i) r[free_[i]] = q[i];
+  RodEnergy elastic;
+  linkage_.set_dofs(r, &elastic);
+  return energy_with(elastic).total();
+}
+
+EnergyReport LinkageProblem::energy() const { return energy_with(linkage_.energy()); }
+
+EnergyReport LinkageProblem::energy_with(const RodEnergy& e) const {
   EnergyReport report{e.stretching, e.bending, e.twisting, 0.0};
   // Work of the dead loads: per segment in parallel, summed in order.
   const int ns = linkage_.num_segments();

@@ -86,6 +86,8 @@ class LinkageProblem {
   const std::vector<int>& free_indices() const { return free_; }
   Eigen::VectorXd free_dofs() const;
   void set_free_dofs(const Eigen::VectorXd& q);
+  // The same, returning energy().total() there (computed in the same pass).
+  double set_free_dofs_and_energy(const Eigen::VectorXd& q);
   // All reduced unknowns (fixed ones included), e.g. for restarts.
   Eigen::VectorXd dofs() const { return linkage_.dofs(); }
   void set_dofs(const Eigen::VectorXd& r) { linkage_.set_dofs(r); }
@@ -128,6 +130,8 @@ class LinkageProblem {
   std::vector<std::optional<double>> opening_angles() const;
 
  private:
+  // The energy report of the current configuration, given its elastic part.
+  EnergyReport energy_with(const RodEnergy& elastic) const;
   void fix(int index) { fixed_[index] = true; }
 
   RodLinkage linkage_;

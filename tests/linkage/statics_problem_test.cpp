@@ -47,6 +47,23 @@ TEST_CASE("Problem gradient and Hessian with gravity and point loads match finit
   CHECK(checked > 1000);
 }
 
+TEST_CASE("Setting the unknowns with the energy in one pass gives energy() bit for bit, loads included") {
+  std::mt19937 rng(41);
+  // 40 segments: above the size at which segments are set in parallel.
+  LinkageProblem problem(RodLinkage(grid(5, 5, 0.3), test_options(RestShape::Straight)), loaded_setup());
+  REQUIRE(problem.linkage().num_segments() >= 32);
+  const Eigen::VectorXd start = problem.free_dofs();
+  for (int trial = 0; trial < 3; ++trial) {
+    const Eigen::VectorXd q = start + random_vector(problem.num_free(), rng, 0.03);
+    const double fused = problem.set_free_dofs_and_energy(q);
+    const Eigen::VectorXd r_fused = problem.dofs();
+    problem.set_free_dofs(q);
+    CHECK(problem.dofs() == r_fused);
+    CHECK(fused == problem.energy().total());
+    CHECK(problem.energy().external != 0.0);
+  }
+}
+
 TEST_CASE("Without supports the joint nearest the centre is pinned, supports are checked") {
   const LinkageProblem pinned(RodLinkage(grid(3, 3), test_options()), StaticsSetup{});
   CHECK(pinned.default_support_vertex() == 4);
