@@ -9,6 +9,7 @@
 
 #include <stdexcept>
 
+#include "point_glyphs.hpp"
 #include "polydata_writer.hpp"
 #include "vtk_arrays.hpp"
 
@@ -16,21 +17,15 @@ namespace xshell {
 
 void write_reactions_file(const EngineeringSnapshot& snapshot, const std::filesystem::path& path,
                           const WriteOptions& options) {
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkCellArray> vertices;
+  std::vector<Eigen::Vector3d> positions, forces, moments;
   std::vector<int> ids;
-  std::vector<Eigen::Vector3d> forces, moments;
   for (const ReactionGlyph& r : snapshot.reactions) {
-    const vtkIdType id = points->InsertNextPoint(r.position.x(), r.position.y(), r.position.z());
-    vertices->InsertNextCell(1, &id);
+    positions.push_back(r.position);
     ids.push_back(r.vertex);
     forces.push_back(r.force);
     moments.push_back(r.moment);
   }
-  vtkNew<vtkPolyData> data;
-  data->SetPoints(points);
-  data->SetVerts(vertices);
+  const vtkSmartPointer<vtkPolyData> data = point_glyphs(positions);
   vtkPointData* point_data = data->GetPointData();
   point_data->AddArray(int_array("vertex", ids));
   point_data->AddArray(vector_array("reaction_force", forces));

@@ -1,11 +1,8 @@
 #include "joints_file.hpp"
 
-#include <vtkCellArray.h>
-#include <vtkNew.h>
 #include <vtkPointData.h>
-#include <vtkPoints.h>
-#include <vtkPolyData.h>
 
+#include "point_glyphs.hpp"
 #include "polydata_writer.hpp"
 #include "vtk_arrays.hpp"
 
@@ -13,26 +10,18 @@ namespace xshell {
 
 void write_joints_file(const Snapshot& snapshot, const std::filesystem::path& path,
                        const WriteOptions& options) {
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkCellArray> vertices;
+  std::vector<Eigen::Vector3d> positions, normals;
   std::vector<int> vertex_ids, valences;
-  std::vector<Eigen::Vector3d> normals;
   std::vector<double> angles;
-
   for (const JointSnapshot& joint : snapshot.joints) {
-    const Eigen::Vector3d& x = joint.position;
-    const vtkIdType id = points->InsertNextPoint(x.x(), x.y(), x.z());
-    vertices->InsertNextCell(1, &id);
+    positions.push_back(joint.position);
     vertex_ids.push_back(joint.vertex);
     normals.push_back(joint.normal);
     angles.push_back(joint.opening_angle);
     valences.push_back(joint.valence);
   }
 
-  vtkNew<vtkPolyData> data;
-  data->SetPoints(points);
-  data->SetVerts(vertices);
+  const vtkSmartPointer<vtkPolyData> data = point_glyphs(positions);
   vtkPointData* point_data = data->GetPointData();
   point_data->AddArray(int_array("vertex", vertex_ids));
   point_data->AddArray(vector_array("normal", normals));
