@@ -10,10 +10,9 @@
 
 namespace xshell::testing {
 
-// A straight rod of length 1 along x, square section of side w with E I = 1
-// (E = 12 / w^4), clamped at vertex 0 (its first edge held), loaded at the
-// tip (vertex 1).
-inline LinkageProblem cantilever_beam(int subdivisions, const Eigen::Vector3d& tip_force, double w = 0.01) {
+// A straight rod of length 1 along x as a one-segment linkage, square
+// section of side w with E I = 1 (E = 12 / w^4), under `setup`.
+inline LinkageProblem unit_beam(int subdivisions, const StaticsSetup& setup, double w = 0.01) {
   LineGraph g;
   g.vertices = {{0, 0, 0}, {1, 0, 0}};
   g.edges = {{0, 1}};
@@ -22,10 +21,16 @@ inline LinkageProblem cantilever_beam(int subdivisions, const Eigen::Vector3d& t
   o.rest_shape = RestShape::Straight;
   o.material.young_modulus = 12.0 / std::pow(w, 4);
   o.material.section = {SectionShape::Rectangle, w, w};
+  return LinkageProblem(RodLinkage(g, o), setup);
+}
+
+// The unit beam clamped at vertex 0 (its first edge held), loaded at the
+// tip (vertex 1).
+inline LinkageProblem cantilever_beam(int subdivisions, const Eigen::Vector3d& tip_force, double w = 0.01) {
   StaticsSetup setup;
   setup.supports = {{0, {SupportDof::Orientation}}};
   setup.forces = {{1, tip_force}};
-  return LinkageProblem(RodLinkage(g, o), setup);
+  return unit_beam(subdivisions, setup, w);
 }
 
 inline NewtonOptions tight_newton(double tolerance = 1e-9) {

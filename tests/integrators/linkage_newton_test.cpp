@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "beam_fixtures.hpp"
 #include "elastica.hpp"
 #include "integrators/linkage_objective.hpp"
 #include "integrators/newton.hpp"
@@ -11,22 +12,9 @@ using namespace xshell;
 
 namespace {
 
-// A straight rod of length 1 along x as a one-segment linkage, square
-// section with E I = 1, clamped at vertex 0.
+// The unit cantilever of beam_fixtures.hpp (E I = 1, clamped at vertex 0).
 LinkageProblem cantilever(int subdivisions, const Eigen::Vector3d& tip_force) {
-  LineGraph g;
-  g.vertices = {{0, 0, 0}, {1, 0, 0}};
-  g.edges = {{0, 1}};
-  LinkageOptions o;
-  o.subdivisions = subdivisions;
-  o.rest_shape = RestShape::Straight;
-  const double w = 0.01;
-  o.material.young_modulus = 12.0 / std::pow(w, 4);
-  o.material.section = {SectionShape::Rectangle, w, w};
-  StaticsSetup setup;
-  setup.supports = {{0, {SupportDof::Orientation}}};
-  setup.forces = {{1, tip_force}};
-  return LinkageProblem(RodLinkage(g, o), setup);
+  return xshell::testing::cantilever_beam(subdivisions, tip_force);
 }
 
 NewtonOptions tight(double tolerance = 1e-9) {

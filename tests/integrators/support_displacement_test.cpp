@@ -14,20 +14,12 @@ using namespace xshell::testing;
 
 namespace {
 
-// A straight rod of length 1 along x with E I = 1 (square section of side
-// w), clamped at vertex 0; the tip (vertex 1) is held by `tip`.
+// The unit beam (E I = 1) clamped at vertex 0; the tip (vertex 1) is held
+// by `tip`.
 LinkageProblem propped_cantilever(int n, const VertexSupport& tip, double w = 0.01) {
-  LineGraph g;
-  g.vertices = {{0, 0, 0}, {1, 0, 0}};
-  g.edges = {{0, 1}};
-  LinkageOptions o;
-  o.subdivisions = n;
-  o.rest_shape = RestShape::Straight;
-  o.material.young_modulus = 12.0 / std::pow(w, 4);
-  o.material.section = {SectionShape::Rectangle, w, w};
   StaticsSetup setup;
   setup.supports = {{0, {SupportDof::Orientation}}, tip};
-  return LinkageProblem(RodLinkage(g, o), setup);
+  return unit_beam(n, setup, w);
 }
 
 }  // namespace

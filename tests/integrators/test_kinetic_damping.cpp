@@ -20,6 +20,7 @@
 #include "integrators/newton.hpp"
 #include "io/obj_reader.hpp"
 #include "linkage/statics_problem.hpp"
+#include "beam_fixtures.hpp"
 #include "toy_objectives.hpp"
 
 using namespace xshell;
@@ -149,21 +150,10 @@ std::vector<Toy> toys() {
 
 // --- Small linkages, as in linkage_newton_test.cpp ---
 
-// Length 1, square section of side w, E I = 1, clamped at vertex 0. The
-// number of kinetic-damping iterations grows like sqrt(EA / EI) ~ 1 / w.
+// The unit cantilever of beam_fixtures.hpp (E I = 1, clamped at vertex 0).
+// The number of kinetic-damping iterations grows like sqrt(EA / EI) ~ 1 / w.
 LinkageProblem cantilever(int subdivisions, const Eigen::Vector3d& tip_force, double w = 0.01) {
-  LineGraph g;
-  g.vertices = {{0, 0, 0}, {1, 0, 0}};
-  g.edges = {{0, 1}};
-  LinkageOptions o;
-  o.subdivisions = subdivisions;
-  o.rest_shape = RestShape::Straight;
-  o.material.young_modulus = 12.0 / std::pow(w, 4);  // E I = 1
-  o.material.section = {SectionShape::Rectangle, w, w};
-  StaticsSetup setup;
-  setup.supports = {{0, {SupportDof::Orientation}}};
-  setup.forces = {{1, tip_force}};
-  return LinkageProblem(RodLinkage(g, o), setup);
+  return xshell::testing::cantilever_beam(subdivisions, tip_force, w);
 }
 
 LineGraph square_grid(int n) {
