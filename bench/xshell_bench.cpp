@@ -578,7 +578,8 @@ int main(int argc, char** argv) {
 
   // Scaling over the grids without gravity: everything but the
   // factorizations, and the factorization itself.
-  std::vector<double> n, outside, factor, hessian, gradient, outside_cpu, factor_cpu, hessian_cpu;
+  std::vector<double> n, outside, factor, hessian, gradient, outside_cpu, factor_cpu, hessian_cpu, outside_solve,
+      factor_solve;
   for (const BenchResult& r : results) {
     if (r.kind != "grid" || r.gravity) continue;
     n.push_back(double(r.free_unknowns));
@@ -589,6 +590,8 @@ int main(int argc, char** argv) {
     factor_cpu.push_back(r.factorization_cpu_ms);
     hessian_cpu.push_back(r.hessian_cpu_ms);
     outside_cpu.push_back(r.iteration_cpu_ms - r.factorizations_per_iteration * r.factorization_cpu_ms);
+    outside_solve.push_back(r.solve_hessian_ms + r.solve_rest_ms);
+    factor_solve.push_back(r.solve_factorization_ms);
   }
   if (n.size() >= 2) {
     std::printf("log-log slopes over the grids (%.0f to %.0f unknowns): iteration minus factorizations %.2f, "
@@ -597,6 +600,9 @@ int main(int argc, char** argv) {
                 loglog_slope(n, factor));
     std::printf("the same in CPU time: iteration minus factorizations %.2f, Hessian %.2f, factorization %.2f\n",
                 loglog_slope(n, outside_cpu), loglog_slope(n, hessian_cpu), loglog_slope(n, factor_cpu));
+    std::printf("timed inside the solves (medians per iteration): everything but the factorizations %.2f, "
+                "the factorizations %.2f\n",
+                loglog_slope(n, outside_solve), loglog_slope(n, factor_solve));
   }
   if (solvers && !no_solve) {
     std::printf("\nthe same relaxation by each solver (tolerance 1e-6): iterations or steps, seconds, ratio to Newton\n");
