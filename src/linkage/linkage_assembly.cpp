@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "math/dual1.hpp"
+#include "segment_parallel.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -45,10 +46,6 @@ std::array<int, 7> terminal_variables(const ElasticRod& rod, int side) {
 
 int terminal_edge_index(const ElasticRod& rod, int side) { return side == 0 ? 0 : rod.num_edges() - 1; }
 
-// Below this many segments an evaluation stays on one thread: the fork and
-// barriers of a parallel region cost more than they save.
-constexpr int kMinParallelSegments = 32;
-
 }  // namespace
 
 void terminal_edge_jacobian(const Joint& joint, int label, int sign, const SourceFrame& source,
@@ -61,32 +58,34 @@ void terminal_edge_jacobian(const Joint& joint, int label, int sign, const Sourc
   for (int k = 0; k < 7; ++k) jacobian.row(k) = out[k]->g.transpose();
 }
 
-void joint_geometry_derivatives(const Joint& joint, JointGeometryDerivatives& out) {
-  using D = Dual<6>;
+namespace {
+// The joint's geometry v = (e_A, e_B, n) in forward-mode duals D seeded on
+// parameters 3..8 (p enters as a constant).
+template <class D>
+std::array<D, 9> joint_geometry_duals(const Joint& joint) {
   D q[9];
   for (int i = 0; i < 3; ++i) q[i] = D(joint.params()[i]);
   for (int i = 3; i < 9; ++i) q[i] = D::variable(i - 3, joint.params()[i]);
   V3<D> e_a, e_b, n;
   joint.geometry<D>(q, e_a, e_b, n);
-  const D* v[9] = {&e_a.x, &e_a.y, &e_a.z, &e_b.x, &e_b.y, &e_b.z, &n.x, &n.y, &n.z};
+  return {e_a.x, e_a.y, e_a.z, e_b.x, e_b.y, e_b.z, n.x, n.y, n.z};
+}
+}  // namespace
+
+void joint_geometry_derivatives(const Joint& joint, JointGeometryDerivatives& out) {
+  const std::array<Dual<6>, 9> v = joint_geometry_duals<Dual<6>>(joint);
   for (int k = 0; k < 9; ++k) {
-    out.value[k] = v[k]->v;
-    out.jacobian.row(k) = v[k]->g.transpose();
-    out.hessians[k] = v[k]->h;
+    out.value[k] = v[k].v;
+    out.jacobian.row(k) = v[k].g.transpose();
+    out.hessians[k] = v[k].h;
   }
 }
 
 void joint_geometry_jacobian(const Joint& joint, JointGeometryDerivatives& out) {
-  using D = Dual1<6>;
-  D q[9];
-  for (int i = 0; i < 3; ++i) q[i] = D(joint.params()[i]);
-  for (int i = 3; i < 9; ++i) q[i] = D::variable(i - 3, joint.params()[i]);
-  V3<D> e_a, e_b, n;
-  joint.geometry<D>(q, e_a, e_b, n);
-  const D* v[9] = {&e_a.x, &e_a.y, &e_a.z, &e_b.x, &e_b.y, &e_b.z, &n.x, &n.y, &n.z};
+  const std::array<Dual1<6>, 9> v = joint_geometry_duals<Dual1<6>>(joint);
   for (int k = 0; k < 9; ++k) {
-    out.value[k] = v[k]->v;
-    out.jacobian.row(k) = v[k]->g.transpose();
+    out.value[k] = v[k].v;
+    out.jacobian.row(k) = v[k].g.transpose();
   }
 }
 

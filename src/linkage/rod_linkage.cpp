@@ -1,13 +1,13 @@
 #include "rod_linkage.hpp"
 
 #include <cstdio>
-#include <exception>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "edge_vector_conversion.hpp"
 #include "model_error.hpp"
+#include "segment_parallel.hpp"
 
 namespace xshell {
 
@@ -16,25 +16,6 @@ std::string degrees_text(double degrees) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.3g", degrees);
   return buffer;
-}
-
-// Below this many segments a per-segment loop stays on one thread.
-constexpr int kMinParallelSegments = 32;
-
-// f(s) for every segment, in parallel; the first exception is rethrown.
-template <class F>
-void for_each_segment(int count, F&& f) {
-  std::exception_ptr failure;
-#pragma omp parallel for schedule(static) if (count >= kMinParallelSegments)
-  for (int s = 0; s < count; ++s) {
-    try {
-      f(s);
-    } catch (...) {
-#pragma omp critical(xshell_segment_failure)
-      if (!failure) failure = std::current_exception();
-    }
-  }
-  if (failure) std::rethrow_exception(failure);
 }
 
 // Segments' energies summed in segment order: the same bits on any number

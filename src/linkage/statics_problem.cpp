@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "model_error.hpp"
+#include "segment_parallel.hpp"
 
 namespace xshell {
 
@@ -203,17 +204,17 @@ Eigen::VectorXd LinkageProblem::free_dofs() const {
   return q;
 }
 
-void LinkageProblem::set_free_dofs(const Eigen::VectorXd& q) {
+Eigen::VectorXd LinkageProblem::dofs_with_free(const Eigen::VectorXd& q) const {
   Eigen::VectorXd r = linkage_.dofs();
   for (size_t i = 0; i < free_.size(); ++i) r[free_[i]] = q[i];
-  linkage_.set_dofs(r);
+  return r;
 }
 
+void LinkageProblem::set_free_dofs(const Eigen::VectorXd& q) { linkage_.set_dofs(dofs_with_free(q)); }
+
 double LinkageProblem::set_free_dofs_and_energy(const Eigen::VectorXd& q) {
-  Eigen::VectorXd r = linkage_.dofs();
-  for (size_t i = 0; i < free_.size(); ++i) r[free_[i]] = q[i];
   RodEnergy elastic;
-  linkage_.set_dofs(r, &elastic);
+  linkage_.set_dofs(dofs_with_free(q), &elastic);
   return energy_with(elastic).total();
 }
 
@@ -222,12 +223,11 @@ EnergyReport LinkageProblem::energy() const { return energy_with(linkage_.energy
 EnergyReport LinkageProblem::energy_with(const RodEnergy& e) const {
   EnergyReport report{e.stretching, e.bending, e.twisting, 0.0};
   // Work of the dead loads: per segment in parallel, summed in order.
-  const int ns = linkage_.num_segments();
-  std::vector<double> work(ns, 0.0);
-#pragma omp parallel for schedule(static) if (ns >= 32)
-  for (int s = 0; s < ns; ++s)
+  std::vector<double> work(linkage_.num_segments(), 0.0);
+  for_each_segment(linkage_.num_segments(), [&](int s) {
     if (has_segment_loads_[s])
       work[s] = segment_forces_[s].dot(linkage_.segment(s).dofs() - linkage_.input_segment_dofs()[s]);
+  });
   for (double w : work) report.external -= w;
   if (has_point_loads_) report.external -= point_forces_.dot(linkage_.dofs() - input_dofs_);
   return report;

@@ -130,6 +130,8 @@ class LinkageProblem {
   std::vector<std::optional<double>> opening_angles() const;
 
  private:
+  // All reduced unknowns as they are, with the free ones replaced by q.
+  Eigen::VectorXd dofs_with_free(const Eigen::VectorXd& q) const;
   // The energy report of the current configuration, given its elastic part.
   EnergyReport energy_with(const RodEnergy& elastic) const;
   void fix(int index) { fixed_[index] = true; }
