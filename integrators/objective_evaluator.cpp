@@ -13,8 +13,12 @@ void ObjectiveEvaluator::sync() {
   gradient_valid_ = false;
 }
 
+bool ObjectiveEvaluator::is_at(const Eigen::Ref<const Eigen::VectorXd>& q) const {
+  return known_ && position_.size() == q.size() && position_ == q;
+}
+
 void ObjectiveEvaluator::move_to(const Eigen::Ref<const Eigen::VectorXd>& q) {
-  if (known_ && position_.size() == q.size() && position_ == q) return;
+  if (is_at(q)) return;
   known_ = false;
   gradient_valid_ = false;
   objective_.set(q);
@@ -23,7 +27,7 @@ void ObjectiveEvaluator::move_to(const Eigen::Ref<const Eigen::VectorXd>& q) {
 }
 
 double ObjectiveEvaluator::energy_at(const Eigen::Ref<const Eigen::VectorXd>& q) {
-  if (known_ && position_.size() == q.size() && position_ == q) return objective_.energy();
+  if (is_at(q)) return objective_.energy();
   known_ = false;
   gradient_valid_ = false;
   const double energy = objective_.set_and_energy(q);

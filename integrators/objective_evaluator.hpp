@@ -62,6 +62,8 @@ class ObjectiveEvaluator {
   void rethrow_if_fatal();
 
  private:
+  // True when the objective is known to be at q.
+  bool is_at(const Eigen::Ref<const Eigen::VectorXd>& q) const;
   Objective& objective_;
   Eigen::VectorXd position_;  // where the objective is, when known_
   bool known_ = false;
