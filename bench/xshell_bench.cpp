@@ -43,6 +43,7 @@
 #include <omp.h>
 #endif
 
+#include "bench_result.hpp"
 #include "integrators/cholesky_solver.hpp"
 #include "integrators/dynamics.hpp"
 #include "integrators/kinetic_damping.hpp"
@@ -54,6 +55,7 @@
 namespace {
 
 using namespace xshell;
+using namespace xshell::bench;
 using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
 
@@ -65,35 +67,6 @@ struct BenchCase {
   bool gravity = false;
 };
 
-struct BenchResult {
-  std::string name, kind;
-  int subdivisions = 0, gravity = 0, threads = 1;
-  long unknowns = 0, free_unknowns = 0, hessian_nonzeros = 0;
-  double energy_gradient_ms = NAN, hessian_ms = NAN, factorization_ms = NAN;
-  double iteration_ms = NAN, factorizations_per_iteration = NAN, iteration_over_factorizations = NAN;
-  // The same in process CPU time (all threads): with one thread, what the
-  // wall times would be on an idle machine.
-  double hessian_cpu_ms = NAN, factorization_cpu_ms = NAN, iteration_cpu_ms = NAN, iteration_over_factorizations_cpu = NAN;
-  long iterations = -1;
-  double solve_s = NAN, gradient_measure = NAN;
-  std::string status = "skipped";
-  double peak_rss_mb = NAN;
-  // --solvers: the same relaxation by damped dynamics and kinetic damping.
-  long dynamics_steps = -1, kinetic_iterations = -1;
-  double dynamics_s = NAN, kinetic_s = NAN;
-  std::string dynamics_status = "skipped", kinetic_status = "skipped";
-  // Inside the solve, medians over its iterations: Hessian assembly, the
-  // numeric factorizations, and everything else (evaluations, line search,
-  // solves, rebase, bookkeeping).
-  double solve_hessian_ms = NAN, solve_factorization_ms = NAN, solve_rest_ms = NAN;
-  // Hessian assembly on one thread, timed in the same process alternately
-  // with hessian_ms's thread count (the speedup is their ratio of medians).
-  double hessian_1thread_ms = NAN, hessian_speedup = NAN;
-  // The solve's iterations over the factorizations they performed, both as
-  // timed inside the solve (cold caches and all).
-  double iteration_over_solve_factorizations = NAN;
-};
-
 // What run_case measures besides the factorization costs.
 struct BenchSettings {
   int reps = 5;
@@ -101,77 +74,6 @@ struct BenchSettings {
   bool solvers = false;
   long kinetic_limit = 200000;
 };
-
-const char* kColumns =
-    "case,kind,subdivisions,gravity,threads,unknowns,free_unknowns,hessian_nonzeros,energy_gradient_ms,"
-    "hessian_ms,factorization_ms,iteration_ms,factorizations_per_iteration,iteration_over_factorizations,"
-    "newton_iterations,solve_s,status,gradient_measure,peak_rss_mb,hessian_cpu_ms,factorization_cpu_ms,"
-    "iteration_cpu_ms,iteration_over_factorizations_cpu,dynamics_steps,dynamics_s,dynamics_status,"
-    "kinetic_iterations,kinetic_s,kinetic_status,solve_hessian_ms,solve_factorization_ms,solve_rest_ms,"
-    "hessian_1thread_ms,hessian_speedup,iteration_over_solve_factorizations";
-
-std::string to_csv(const BenchResult& r) {
-  std::ostringstream o;
-  o.precision(6);
-  o << r.name << ',' << r.kind << ',' << r.subdivisions << ',' << r.gravity << ',' << r.threads << ','
-    << r.unknowns << ',' << r.free_unknowns << ',' << r.hessian_nonzeros << ',' << r.energy_gradient_ms << ','
-    << r.hessian_ms << ',' << r.factorization_ms << ',' << r.iteration_ms << ',' << r.factorizations_per_iteration
-    << ',' << r.iteration_over_factorizations << ',' << r.iterations << ',' << r.solve_s << ',' << r.status << ','
-    << r.gradient_measure << ',' << r.peak_rss_mb << ',' << r.hessian_cpu_ms << ',' << r.factorization_cpu_ms << ','
-    << r.iteration_cpu_ms << ',' << r.iteration_over_factorizations_cpu << ',' << r.dynamics_steps << ','
-    << r.dynamics_s << ',' << r.dynamics_status << ',' << r.kinetic_iterations << ',' << r.kinetic_s << ','
-    << r.kinetic_status << ',' << r.solve_hessian_ms << ',' << r.solve_factorization_ms << ',' << r.solve_rest_ms
-    << ',' << r.hessian_1thread_ms << ',' << r.hessian_speedup << ',' << r.iteration_over_solve_factorizations;
-  return o.str();
-}
-
-BenchResult from_csv(const std::string& line) {
-  std::vector<std::string> f;
-  std::stringstream in(line);
-  for (std::string item; std::getline(in, item, ',');) f.push_back(item);
-  BenchResult r;
-  if (f.size() != 35) {
-    r.status = "failed";
-    return r;
-  }
-  auto d = [](const std::string& s) { return std::strtod(s.c_str(), nullptr); };
-  r.name = f[0];
-  r.kind = f[1];
-  r.subdivisions = std::stoi(f[2]);
-  r.gravity = std::stoi(f[3]);
-  r.threads = std::stoi(f[4]);
-  r.unknowns = std::stol(f[5]);
-  r.free_unknowns = std::stol(f[6]);
-  r.hessian_nonzeros = std::stol(f[7]);
-  r.energy_gradient_ms = d(f[8]);
-  r.hessian_ms = d(f[9]);
-  r.factorization_ms = d(f[10]);
-  r.iteration_ms = d(f[11]);
-  r.factorizations_per_iteration = d(f[12]);
-  r.iteration_over_factorizations = d(f[13]);
-  r.iterations = std::stol(f[14]);
-  r.solve_s = d(f[15]);
-  r.status = f[16];
-  r.gradient_measure = d(f[17]);
-  r.peak_rss_mb = d(f[18]);
-  r.hessian_cpu_ms = d(f[19]);
-  r.factorization_cpu_ms = d(f[20]);
-  r.iteration_cpu_ms = d(f[21]);
-  r.iteration_over_factorizations_cpu = d(f[22]);
-  r.dynamics_steps = std::stol(f[23]);
-  r.dynamics_s = d(f[24]);
-  r.dynamics_status = f[25];
-  r.kinetic_iterations = std::stol(f[26]);
-  r.kinetic_s = d(f[27]);
-  r.kinetic_status = f[28];
-  r.solve_hessian_ms = d(f[29]);
-  r.solve_factorization_ms = d(f[30]);
-  r.solve_rest_ms = d(f[31]);
-  r.hessian_1thread_ms = d(f[32]);
-  r.hessian_speedup = d(f[33]);
-  r.iteration_over_solve_factorizations = d(f[34]);
-  return r;
-}
 
 // The file of the BLAS that CHOLMOD calls (where dsyrk_ resolves).
 std::string loaded_blas() {

@@ -1,0 +1,45 @@
+// One row of xshell_bench's table and CSV: what is measured per case, and
+// the CSV line a case's child process sends back to the parent.
+#pragma once
+
+#include <cmath>
+#include <string>
+
+namespace xshell::bench {
+
+struct BenchResult {
+  std::string name, kind;
+  int subdivisions = 0, gravity = 0, threads = 1;
+  long unknowns = 0, free_unknowns = 0, hessian_nonzeros = 0;
+  double energy_gradient_ms = NAN, hessian_ms = NAN, factorization_ms = NAN;
+  double iteration_ms = NAN, factorizations_per_iteration = NAN, iteration_over_factorizations = NAN;
+  // The same in process CPU time (all threads): with one thread, what the
+  // wall times would be on an idle machine.
+  double hessian_cpu_ms = NAN, factorization_cpu_ms = NAN, iteration_cpu_ms = NAN, iteration_over_factorizations_cpu = NAN;
+  long iterations = -1;
+  double solve_s = NAN, gradient_measure = NAN;
+  std::string status = "skipped";
+  double peak_rss_mb = NAN;
+  // --solvers: the same relaxation by damped dynamics and kinetic damping.
+  long dynamics_steps = -1, kinetic_iterations = -1;
+  double dynamics_s = NAN, kinetic_s = NAN;
+  std::string dynamics_status = "skipped", kinetic_status = "skipped";
+  // Inside the solve, medians over its iterations: Hessian assembly, the
+  // numeric factorizations, and everything else (evaluations, line search,
+  // solves, rebase, bookkeeping).
+  double solve_hessian_ms = NAN, solve_factorization_ms = NAN, solve_rest_ms = NAN;
+  // Hessian assembly on one thread, timed in the same process alternately
+  // with hessian_ms's thread count (the speedup is their ratio of medians).
+  double hessian_1thread_ms = NAN, hessian_speedup = NAN;
+  // The solve's iterations over the factorizations they performed, both as
+  // timed inside the solve (cold caches and all).
+  double iteration_over_solve_factorizations = NAN;
+};
+
+// The CSV header, and a result as one line of it (without newline).
+extern const char* kColumns;
+std::string to_csv(const BenchResult& r);
+// The result of a CSV line; status "failed" when the line does not parse.
+BenchResult from_csv(const std::string& line);
+
+}  // namespace xshell::bench
