@@ -58,6 +58,7 @@ struct IdaIntegrator {
   SunLinearSolver linear_solver;
   IdaMemory ida;
   std::string last_message;
+  int order = 5;  // largest BDF order
 
   IdaIntegrator(DynamicsSystem& system, const DynamicsOptions& options, const Eigen::VectorXd& y0,
                 const Eigen::VectorXd& yp0, const Eigen::VectorXd& absolute_tolerances) {
@@ -86,7 +87,7 @@ struct IdaIntegrator {
       check_sundials(IDASetInitStep(m, options.initial_step), "IDASetInitStep");
     // The gradient flow at BDF orders 3-5 (not A-stable) let the energy rise
     // by 1e-6 of its drop while a column buckled; orders 1-2 do not.
-    const int order = system.form() == DynamicsForm::FirstOrder ? std::min(2, options.max_order) : options.max_order;
+    order = system.form() == DynamicsForm::FirstOrder ? std::min(2, options.max_order) : options.max_order;
     check_sundials(IDASetMaxOrd(m, order), "IDASetMaxOrd");
     if (options.suppress_velocity && size > system.unknowns()) {
       id = make_serial_vector(size, context);
@@ -141,6 +142,36 @@ Eigen::VectorXd unknown_scales(const Eigen::VectorXd& weights) {
   const double smallest = w.size() > 0 ? w.minCoeff() : 0.0;
   if (!(smallest > 0.0) || !w.allFinite()) return Eigen::VectorXd::Ones(w.size());
   return w / smallest;
+}
+
+// Root mean square of x / (rtol |y| + atol), IDA's error norm, over the
+// first x.size() entries of y and atol.
+double weighted_rms(const Eigen::VectorXd& x, const Eigen::VectorXd& y, const Eigen::VectorXd& atol,
+                    double rtol) {
+  const Eigen::Index m = x.size();
+  if (m == 0) return 0.0;
+  const Eigen::ArrayXd weight = rtol * y.head(m).array().abs() + atol.head(m).array();
+  return std::sqrt((x.array() / weight).square().sum() / static_cast<double>(m));
+}
+
+// A first step for IDA from y and y'. IDA's own estimate is 0.5 / |y'|,
+// over the components in the error test; with the velocities out of it
+// (second order, suppress), that norm sees only q' = v, which is zero at
+// rest. The step is then sized from the motion of q: v h and a h^2 / 2
+// (a = v') half the error test's tolerance. 0: no estimate.
+double first_step(const Eigen::VectorXd& y, const Eigen::VectorXd& yp, const Eigen::VectorXd& atol,
+                  double rtol, Eigen::Index n, bool q_only) {
+  double h = std::numeric_limits<double>::infinity();
+  if (q_only) {
+    const double v = weighted_rms(yp.head(n), y, atol, rtol);
+    const double a = weighted_rms(yp.tail(n), y, atol, rtol);  // q's weights
+    if (v > 0.0) h = 0.5 / v;
+    if (a > 0.0) h = std::min(h, 1.0 / std::sqrt(a));
+  } else {
+    const double norm = weighted_rms(yp, y, atol, rtol);
+    if (norm > 0.0) h = 0.5 / norm;
+  }
+  return std::isfinite(h) ? h : 0.0;
 }
 
 struct DampingChoice {
@@ -317,17 +348,16 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
   } else {
     const Eigen::VectorXd yp0 = system.consistent_derivatives(y, 0.0);
     IdaIntegrator integrator(system, options, y, yp0, absolute_tolerances());
-    if (on_slow_manifold && options.initial_step <= 0.0 && options.start_step > 1.0) {
-      // IDA's own first step is h = 0.5 / |y'|_WRMS (IDA's initial step
-      // rule for a distant output time), sized for a fast layer that this
-      // start does not have: begin start_step times longer.
-      const Eigen::VectorXd atol = absolute_tolerances();
-      const Eigen::VectorXd weighted =
-          yp0.array() / (options.relative_tolerance * y.array().abs() + atol.array());
-      const double norm = std::sqrt(weighted.squaredNorm() / static_cast<double>(weighted.size()));
-      if (norm > 0.0 && std::isfinite(norm))
-        check_sundials(IDASetInitStep(integrator.ida.get(), options.start_step * 0.5 / norm),
-                       "IDASetInitStep");
+    const bool q_only = second_order && options.suppress_velocity;
+    if (options.initial_step <= 0.0) {
+      // IDA's own first step is h = 0.5 / |y'|_WRMS (its rule for a distant
+      // output time), which sees nothing of a start at rest when the
+      // velocities are out of the error test; on the slow manifold, it is
+      // sized for a fast layer that this start does not have: begin
+      // start_step times longer.
+      double h0 = first_step(y, yp0, absolute_tolerances(), relative_tolerance, n, q_only);
+      if (on_slow_manifold && options.start_step > 1.0) h0 *= options.start_step;
+      if (h0 > 0.0) check_sundials(IDASetInitStep(integrator.ida.get(), h0), "IDASetInitStep");
     }
     auto accumulate_stats = [&] {
       long value = 0;
@@ -360,7 +390,24 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       return d;
     };
     const double time_scale = 1.0 / system.damping().rate;
+    const double total0 = report.energy + report.kinetic_energy;
+    double last_total = total0;  // E + K at last_good
     Eigen::VectorXd last_good = y;
+    double last_good_t = 0.0;
+    // Restarts IDA at (time, y), the objective being at y's q, with
+    // consistent derivatives and first step h_first (0: first_step's).
+    auto restart_at = [&](double time, double h_first) {
+      as_eigen(integrator.y.get()) = y;
+      as_eigen(integrator.yp.get()) = system.consistent_derivatives(y, time);
+      accumulate_stats();
+      void* m = integrator.ida.get();
+      check_sundials(IDAReInit(m, time, integrator.y.get(), integrator.yp.get()), "IDAReInit");
+      as_eigen(integrator.atol.get()) = absolute_tolerances();
+      check_sundials(IDASVtolerances(m, relative_tolerance, integrator.atol.get()), "IDASVtolerances");
+      if (!(h_first > 0.0))
+        h_first = first_step(y, as_eigen(integrator.yp.get()), absolute_tolerances(), relative_tolerance, n, q_only);
+      check_sundials(IDASetInitStep(m, h_first), "IDASetInitStep");
+    };
     Eigen::VectorXd rebased_at = y.head(n);
     Eigen::VectorXd refreshed_at = y.head(n);
     long last_rebase = 0;
@@ -417,6 +464,31 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       report.energy = objective.energy();
       report.kinetic_energy = kinetic(y);
       report.gradient_measure = weighted_max_norm(weights, evaluator.gradient());
+      const double total = report.energy + report.kinetic_energy;
+      if (options.dissipation_guard > 0.0 && std::isfinite(total) &&
+          total - last_total > options.dissipation_guard * std::max(total0 - last_total, 0.0) +
+                                   1e-12 * std::abs(report.energy)) {
+        // E + K rose: the step is taken again from last_good, half as long,
+        // by backward Euler (see DynamicsOptions).
+        --result.steps;
+        ++result.rejected_steps;
+        y = last_good;
+        t = last_good_t;
+        if (0.5 * h <= kStagnantStepRatio * t) {
+          evaluator.move_to(y.head(n));
+          finish(DynamicsStatus::IntegratorFailed,
+                 "E + K rises even for steps of " + scientific(0.5 * h) + " at t = " + scientific(t));
+          break;
+        }
+        if (evaluator.move_to(y.data()) != 0) {
+          evaluator.rethrow_if_fatal();
+          finish(DynamicsStatus::IntegratorFailed,
+                 "the objective rejected an accepted state: " + evaluator.last_message());
+          break;
+        }
+        restart_at(t, 0.5 * h);
+        continue;
+      }
       if (callbacks.on_step) callbacks.on_step(report);
       if (!std::isfinite(report.energy) || !std::isfinite(report.gradient_measure) ||
           !y.allFinite()) {
@@ -444,6 +516,8 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         break;
       }
       last_good = y;
+      last_good_t = t;
+      last_total = total;
       const double energy_scale =
           std::max(std::abs(energy0 - report.energy), std::abs(report.energy));
       if (report.gradient_measure <= options.gradient_tolerance &&
@@ -479,6 +553,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         refreshed_at = y.head(n);
         weights = objective.gradient_weights();
         last_good = y;
+        last_total = report.energy + kinetic(y);  // v re-expressed
         bool restart = !(y == before);
         if (options.refresh_damping > 0 && options.damping_model == DampingModel::Rayleigh) {
           system.set_damping(refreshed_damping());
@@ -489,15 +564,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
           restart = true;
         }
         if (!restart) continue;  // nothing was re-expressed: no restart needed
-        as_eigen(integrator.y.get()) = y;
-        as_eigen(integrator.yp.get()) = system.consistent_derivatives(y, t);
-        accumulate_stats();
-        void* m = integrator.ida.get();
-        check_sundials(IDAReInit(m, t, integrator.y.get(), integrator.yp.get()), "IDAReInit");
-        as_eigen(integrator.atol.get()) = absolute_tolerances();
-        check_sundials(IDASVtolerances(m, relative_tolerance, integrator.atol.get()),
-                       "IDASVtolerances");
-        check_sundials(IDASetInitStep(m, options.restart_step > 0 ? h * options.restart_step : 0.0), "IDASetInitStep");
+        restart_at(t, options.restart_step > 0 ? h * options.restart_step : 0.0);
       }
     }
     accumulate_stats();

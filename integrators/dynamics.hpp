@@ -11,17 +11,18 @@
 // v_0 = -(C + M/T)^-1 grad E with T one time constant (start_time): for
 // the overdamped modes (c >> m/T) that is the overdamped velocity
 // -C^-1 grad E, at which M v' = -(C v + grad E) vanishes, so the initial
-// layer in which a start from rest accelerates them to it (about 80 of the
-// saddle sample's 200 steps) does not occur; weakly damped modes (zero
+// layer in which a start from rest accelerates them to it does not occur;
+// weakly damped modes (zero
 // modes of free ends) get only the velocity -T M^-1 grad E they would
-// reach in a time T. IDA's first step is then start_step (16) times its own
+// reach in a time T. IDA's first step is then start_step (16) times the
 // estimate, which is sized for an initial layer. From an indefinite Hessian
 // (a saddle start) the start is at rest: the slow manifold does not attract
 // along unstable modes, and starting there made the tee and single-X
 // linkages 2-25% slower. Measured on the test linkages with stable starts:
-// 4-41% fewer steps than from rest (saddle sample 202 -> 119, sphere_open
-// 47 -> 30, curved grid 388 -> 342). E + K starts at E_0 + K_0 and still
-// only decreases.
+// 6-30% fewer steps than from rest on four of six (saddle sample 103 -> 85,
+// sphere_open 27 -> 19, samples/grid 42 -> 33, curved grid 195 -> 184), as
+// many on the other two. E + K starts at E_0 + K_0 and still only
+// decreases.
 //
 // Damping (DampingModel): by default Rayleigh, C = b (H_0 + mu M) with H_0
 // the Hessian at the start: every mode of H_0 stiffer than the slowest is
@@ -82,10 +83,11 @@ struct DynamicsOptions {
   // exactly (v' = 0 at the start). 0.3 and 0 were no better than 1 on the
   // test linkages.
   double start_time = 1.0;
-  // SlowManifold: the first step is start_step times IDA's own estimate
-  // 0.5 / |y'_0|_WRMS (<= 1: IDA's estimate; initial_step > 0 overrides
-  // both). 16 skips four of IDA's step doublings: 3-25% fewer steps than 1
-  // on the stable test linkages; 100 and 1000 were no better overall.
+  // SlowManifold: the first step is start_step times the estimate of
+  // first_step below (<= 1: the estimate; initial_step > 0 overrides both).
+  // 16 skips four of IDA's step doublings: 2-23% fewer steps than 1 on the
+  // stable test linkages (saddle sample 89 -> 85, sphere_open 26 -> 20);
+  // 100 and 1000 were no better overall.
   double start_step = 16.0;
   // SlowManifold: the start velocity moves no unknown more than start_reach
   // (in units of unknown_scales, as rebase_distance) in one time constant;
@@ -139,8 +141,31 @@ struct DynamicsOptions {
   // which only lowers the energy. 0: never (IDA to the end).
   double endgame_steps = 1e3;
   // IDA: velocities excluded from the error test (IDASetId/SuppressAlg).
-  bool suppress_velocity = false;
-  int max_order = 5;      // largest BDF order (at most 2 in the first-order form)
+  // Velocities excluded from IDA's error test (IDASetId, IDASetSuppressAlg):
+  // statics needs the path of q, not an accurate v. With velocities in the
+  // test, their absolute tolerance (that of q times the slowest rate) holds
+  // a start from rest to steps of 1e-8 to 1e-7 time constants, and the
+  // designs spent about half of their steps growing out of them: manta_ray
+  // (subdivision 8, from flat) took 222 steps with them and 71 without,
+  // darth_vader 284 and 105, the single X linkage test 701 and 202.
+  // The first step is then sized from the motion of q alone: h =
+  // min(0.5 / |v|, 1 / sqrt(|a|)) in the WRMS norm of q's error weights
+  // (v h and a h^2 / 2 half the error test's tolerance), a = v'(0).
+  bool suppress_velocity = true;
+  // Largest BDF order (at most 2 in the first-order form). With velocities
+  // out of the error test, orders 3-5 let E + K rise by 5e-4 of its drop
+  // on a toy problem of the tests; orders 1-2 stayed within 1e-6 of it.
+  int max_order = 2;
+  // BDF2 is not dissipative: at the end of the saddle sample's run from
+  // rest, it let E + K rise by 4e-6 of its drop over ten steps of constant
+  // size, and by 2e-5 in one step of the column buckling from an
+  // imperfection. A step after which E + K rose by more than
+  // dissipation_guard times its drop so far is rejected: IDA restarts from
+  // the state before it with half its length, at order 1 as every restart
+  // (backward Euler, which only lowers E + K for short enough steps).
+  // Keeping order 1 for the rest of the run instead took 40-50% more steps
+  // on that column. 0: no guard.
+  double dissipation_guard = 1e-7;
   double eta_max = 2.0;   // largest step growth factor
   // Absolute tolerances per unknown scaled by unknown_scales (the
   // gradient weights), so that positions and angles get their own units.
@@ -204,6 +229,7 @@ struct DynamicsResult {
   long rebases = 0;
   long refreshes = 0;      // damping refreshes
   long endgame_steps = 0;  // steps of infinite length (Newton) at the end
+  long rejected_steps = 0;  // steps rejected by dissipation_guard (not counted in steps)
   double seconds = 0.0;
   bool converged() const { return status == DynamicsStatus::Converged; }
 };

@@ -293,8 +293,9 @@ ProblemList timing_problems() {
 }  // namespace
 
 TEST_CASE("Started on the slow manifold, the second-order form skips the initial layer") {
-  // The saddle sample: from rest, about 80 of its 200 steps accelerate the
-  // linkage from v = 0 to the overdamped motion.
+  // The saddle sample: from rest, the first steps accelerate the linkage
+  // from v = 0 to the overdamped motion (about 80 of 200 steps when the
+  // velocities were in IDA's error test; fewer without them, the default).
   const std::filesystem::path samples = XSHELL_SAMPLES_DIR;
   const Config config = read_config((samples / "grid_gravity.json").string());
   const ProblemSetup setup = make_problem_setup(config, read_obj((samples / "saddle.obj").string()));
@@ -329,9 +330,10 @@ TEST_CASE("Started on the slow manifold, the second-order form skips the initial
   MESSAGE("saddle sample, second order: " << steps[0] << " steps from rest, " << steps[1]
                                           << " from the slow manifold");
   CHECK(std::abs(energy[1] - energy[0]) <= 1e-7 * std::abs(energy[0]));
-  // Measured 202 from rest and 119 from the slow manifold.
-  CHECK(steps[1] <= 150);
-  CHECK(steps[1] <= 0.8 * steps[0]);
+  // Measured 105 from rest and 85 from the slow manifold (202 and 119
+  // with the velocities in the error test).
+  CHECK(steps[1] <= 100);
+  CHECK(steps[1] <= 0.9 * steps[0]);
 }
 
 TEST_CASE("Damped dynamics against Newton: wall time on linkages" * doctest::test_suite("validation")) {

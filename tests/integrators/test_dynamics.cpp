@@ -158,8 +158,9 @@ TEST_CASE("damped dynamics near the column's saddle") {
       // column buckles are 1e-6 of the drop (first order, Rayleigh damping).
       CHECK(run.max_total_energy_rise() <= 1e-5 * (run.reports.front().energy - run.result.energy));
       MESSAGE("column from imperfection 1e-4, " << label(tight(form, MassModel::Physical)) << ": "
-                                                << run.result.steps
-                                                << " steps, t = " << run.result.time);
+                                                << run.result.steps << " steps ("
+                                                << run.result.rejected_steps
+                                                << " rejected: E + K rose), t = " << run.result.time);
     }
   }
   SUBCASE("an exactly straight start stays on the saddle, reported unstable") {
