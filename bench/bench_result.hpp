@@ -20,9 +20,11 @@ struct BenchResult {
   double solve_s = NAN, gradient_measure = NAN;
   std::string status = "skipped";
   double peak_rss_mb = NAN;
-  // --solvers: the same relaxation by damped dynamics and kinetic damping.
+  // --solvers: the same relaxation by damped dynamics and kinetic damping;
+  // dynamics_s is the median of repeated runs, alternating with Newton
+  // solves whose median is newton_median_s (the ratio's denominator).
   long dynamics_steps = -1, kinetic_iterations = -1;
-  double dynamics_s = NAN, kinetic_s = NAN;
+  double dynamics_s = NAN, kinetic_s = NAN, newton_median_s = NAN;
   std::string dynamics_status = "skipped", kinetic_status = "skipped";
   // Inside the solve, medians over its iterations: Hessian assembly, the
   // numeric factorizations, and everything else (evaluations, line search,
