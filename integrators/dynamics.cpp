@@ -58,7 +58,6 @@ struct IdaIntegrator {
   SunLinearSolver linear_solver;
   IdaMemory ida;
   std::string last_message;
-  int order = 5;  // largest BDF order
 
   IdaIntegrator(DynamicsSystem& system, const DynamicsOptions& options, const Eigen::VectorXd& y0,
                 const Eigen::VectorXd& yp0, const Eigen::VectorXd& absolute_tolerances) {
@@ -87,7 +86,7 @@ struct IdaIntegrator {
       check_sundials(IDASetInitStep(m, options.initial_step), "IDASetInitStep");
     // The gradient flow at BDF orders 3-5 (not A-stable) let the energy rise
     // by 1e-6 of its drop while a column buckled; orders 1-2 do not.
-    order = system.form() == DynamicsForm::FirstOrder ? std::min(2, options.max_order) : options.max_order;
+    const int order = system.form() == DynamicsForm::FirstOrder ? std::min(2, options.max_order) : options.max_order;
     check_sundials(IDASetMaxOrd(m, order), "IDASetMaxOrd");
     if (options.suppress_velocity && size > system.unknowns()) {
       id = make_serial_vector(size, context);
@@ -146,8 +145,9 @@ Eigen::VectorXd unknown_scales(const Eigen::VectorXd& weights) {
 
 // Root mean square of x / (rtol |y| + atol), IDA's error norm, over the
 // first x.size() entries of y and atol.
-double weighted_rms(const Eigen::VectorXd& x, const Eigen::VectorXd& y, const Eigen::VectorXd& atol,
-                    double rtol) {
+using ConstRef = Eigen::Ref<const Eigen::VectorXd>;
+
+double weighted_rms(const ConstRef& x, const ConstRef& y, const ConstRef& atol, double rtol) {
   const Eigen::Index m = x.size();
   if (m == 0) return 0.0;
   const Eigen::ArrayXd weight = rtol * y.head(m).array().abs() + atol.head(m).array();
@@ -159,8 +159,8 @@ double weighted_rms(const Eigen::VectorXd& x, const Eigen::VectorXd& y, const Ei
 // (second order, suppress), that norm sees only q' = v, which is zero at
 // rest. The step is then sized from the motion of q: v h and a h^2 / 2
 // (a = v') half the error test's tolerance. 0: no estimate.
-double first_step(const Eigen::VectorXd& y, const Eigen::VectorXd& yp, const Eigen::VectorXd& atol,
-                  double rtol, Eigen::Index n, bool q_only) {
+double first_step(const ConstRef& y, const ConstRef& yp, const ConstRef& atol, double rtol, Eigen::Index n,
+                  bool q_only) {
   double h = std::numeric_limits<double>::infinity();
   if (q_only) {
     const double v = weighted_rms(yp.head(n), y, atol, rtol);
@@ -405,7 +405,8 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       as_eigen(integrator.atol.get()) = absolute_tolerances();
       check_sundials(IDASVtolerances(m, relative_tolerance, integrator.atol.get()), "IDASVtolerances");
       if (!(h_first > 0.0))
-        h_first = first_step(y, as_eigen(integrator.yp.get()), absolute_tolerances(), relative_tolerance, n, q_only);
+        h_first = first_step(y, as_eigen(integrator.yp.get()), as_eigen(integrator.atol.get()),
+                             relative_tolerance, n, q_only);
       check_sundials(IDASetInitStep(m, h_first), "IDASetInitStep");
     };
     Eigen::VectorXd rebased_at = y.head(n);
@@ -474,8 +475,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         ++result.rejected_steps;
         y = last_good;
         t = last_good_t;
-        if (0.5 * h <= kStagnantStepRatio * t) {
-          evaluator.move_to(y.head(n));
+        if (0.5 * h <= kStagnantStepRatio * t) {  // the objective is moved to y below the loop
           finish(DynamicsStatus::IntegratorFailed,
                  "E + K rises even for steps of " + scientific(0.5 * h) + " at t = " + scientific(t));
           break;

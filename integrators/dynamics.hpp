@@ -12,9 +12,8 @@
 // the overdamped modes (c >> m/T) that is the overdamped velocity
 // -C^-1 grad E, at which M v' = -(C v + grad E) vanishes, so the initial
 // layer in which a start from rest accelerates them to it does not occur;
-// weakly damped modes (zero
-// modes of free ends) get only the velocity -T M^-1 grad E they would
-// reach in a time T. IDA's first step is then start_step (16) times the
+// weakly damped modes (zero modes of free ends) get only the velocity
+// -T M^-1 grad E they would reach in a time T. IDA's first step is then start_step (16) times the
 // estimate, which is sized for an initial layer. From an indefinite Hessian
 // (a saddle start) the start is at rest: the slow manifold does not attract
 // along unstable modes, and starting there made the tee and single-X
@@ -140,14 +139,13 @@ struct DynamicsOptions {
   // is a Newton step, globalized by the energy line search (newton.hpp),
   // which only lowers the energy. 0: never (IDA to the end).
   double endgame_steps = 1e3;
-  // IDA: velocities excluded from the error test (IDASetId/SuppressAlg).
   // Velocities excluded from IDA's error test (IDASetId, IDASetSuppressAlg):
   // statics needs the path of q, not an accurate v. With velocities in the
   // test, their absolute tolerance (that of q times the slowest rate) holds
   // a start from rest to steps of 1e-8 to 1e-7 time constants, and the
   // designs spent about half of their steps growing out of them: manta_ray
   // (subdivision 8, from flat) took 222 steps with them and 71 without,
-  // darth_vader 284 and 105, the single X linkage test 701 and 202.
+  // darth_vader 284 and 105, the single X linkage test 701 and 216.
   // The first step is then sized from the motion of q alone: h =
   // min(0.5 / |v|, 1 / sqrt(|a|)) in the WRMS norm of q's error weights
   // (v h and a h^2 / 2 half the error test's tolerance), a = v'(0).
