@@ -11,12 +11,15 @@
 #include <optional>
 #include <string>
 
+#include "grid_fixtures.hpp"
 #include "integrators/linkage_objective.hpp"
 #include "integrators/newton.hpp"
 #include "linkage/linkage_fixtures.hpp"
 #include "linkage/statics_problem.hpp"
 
 using namespace xshell;
+using xshell::testing::lath_options;
+using xshell::testing::square_grid;
 
 namespace {
 
@@ -28,35 +31,12 @@ struct LoadCase {
   std::vector<int> constrained;  // vertices with a constrained joint
 };
 
-LineGraph square_grid(int n) {
-  LineGraph g;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) g.vertices.emplace_back(0.25 * j, 0.25 * i, 0.0);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const int v = i * n + j;
-      if (j + 1 < n) g.edges.push_back({v, v + 1});
-      if (i + 1 < n) g.edges.push_back({v, v + n});
-    }
-  return g;
-}
-
-LinkageOptions laths(int subdivisions = 6) {
-  LinkageOptions o;
-  o.subdivisions = subdivisions;
-  o.rest_shape = RestShape::Straight;
-  o.material.young_modulus = 2e10;
-  o.material.density = 1800;
-  o.material.section = {SectionShape::Rectangle, 0.01, 0.007};
-  return o;
-}
-
 std::vector<LoadCase> load_cases() {
   std::vector<LoadCase> cases;
   {  // Valences 2-4, gravity, four corners pinned.
     LoadCase c{"4x4 grid of straight laths under gravity, corners pinned",
                square_grid(4),
-               laths(),
+               lath_options(),
                {},
                {}};
     c.setup.gravity = Eigen::Vector3d(0, 0, -9.81);

@@ -20,8 +20,10 @@
 #include "io/obj_reader.hpp"
 #include "io/problem_setup.hpp"
 #include "linkage/linkage_fixtures.hpp"
+#include "grid_fixtures.hpp"
 
 using namespace xshell;
+using xshell::testing::corner_vertices;
 
 namespace {
 
@@ -239,18 +241,6 @@ std::string format_row(const TimingRow& row) {
   char head[96];
   std::snprintf(head, sizeof head, "%-36s %6d", row.name.c_str(), row.unknowns);
   return head + cell(row.newton, false) + cell(row.second, true) + cell(row.first, true);
-}
-
-std::vector<int> corner_vertices(const LineGraph& g) {
-  std::vector<int> corners;
-  for (const Eigen::Vector2d& d : {Eigen::Vector2d(1, 1), Eigen::Vector2d(1, -1),
-                                  Eigen::Vector2d(-1, 1), Eigen::Vector2d(-1, -1)}) {
-    int best = 0;
-    for (int v = 1; v < static_cast<int>(g.vertices.size()); ++v)
-      if (d.dot(g.vertices[v].head<2>()) > d.dot(g.vertices[best].head<2>())) best = v;
-    if (std::find(corners.begin(), corners.end(), best) == corners.end()) corners.push_back(best);
-  }
-  return corners;
 }
 
 using ProblemList = std::vector<std::pair<std::string, std::function<LinkageProblem()>>>;

@@ -4,11 +4,14 @@
 
 #include "beam_fixtures.hpp"
 #include "elastica.hpp"
+#include "grid_fixtures.hpp"
 #include "integrators/linkage_objective.hpp"
 #include "integrators/newton.hpp"
 #include "linkage/statics_problem.hpp"
 
 using namespace xshell;
+using xshell::testing::lath_options;
+using xshell::testing::square_grid;
 
 namespace {
 
@@ -23,29 +26,6 @@ NewtonOptions tight(double tolerance = 1e-9) {
   n.max_iterations = 200;
   n.line_search = LineSearch::Energy;
   return n;
-}
-
-LineGraph square_grid(int n) {
-  LineGraph g;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) g.vertices.emplace_back(0.25 * j, 0.25 * i, 0.0);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const int v = i * n + j;
-      if (j + 1 < n) g.edges.push_back({v, v + 1});
-      if (i + 1 < n) g.edges.push_back({v, v + n});
-    }
-  return g;
-}
-
-LinkageOptions grid_material(RestShape rest = RestShape::Straight) {
-  LinkageOptions o;
-  o.subdivisions = 6;
-  o.rest_shape = rest;
-  o.material.young_modulus = 2e10;
-  o.material.density = 1800;
-  o.material.section = {SectionShape::Rectangle, 0.01, 0.007};
-  return o;
 }
 
 }  // namespace
@@ -104,7 +84,7 @@ TEST_CASE("Linkage under gravity: converged below tolerance, symmetric, quadrati
   StaticsSetup setup;
   setup.gravity = Eigen::Vector3d(0, 0, -9.81);
   for (int corner : {0, n - 1, n * (n - 1), n * n - 1}) setup.supports.push_back({corner, {SupportDof::Position}});
-  LinkageProblem problem(RodLinkage(square_grid(n), grid_material()), setup);
+  LinkageProblem problem(RodLinkage(square_grid(n), lath_options()), setup);
   LinkageObjective objective(problem);
   std::vector<double> measures;
   NewtonCallbacks callbacks;
@@ -143,7 +123,7 @@ TEST_CASE("Linkage under gravity: converged below tolerance, symmetric, quadrati
 }
 
 TEST_CASE("A zero-energy mechanism (flat grid of straight rods, no load) is converged at once") {
-  LinkageProblem problem(RodLinkage(square_grid(4), grid_material()), StaticsSetup{});
+  LinkageProblem problem(RodLinkage(square_grid(4), lath_options()), StaticsSetup{});
   CHECK(problem.default_support_vertex() >= 0);
   LinkageObjective objective(problem);
   const NewtonResult result = solve_newton(objective, tight());

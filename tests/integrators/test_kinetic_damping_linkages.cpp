@@ -24,11 +24,15 @@
 #include "io/obj_reader.hpp"
 #include "linkage/statics_problem.hpp"
 #include "beam_fixtures.hpp"
+#include "grid_fixtures.hpp"
 #include "kinetic_damping_support.hpp"
 #include "toy_objectives.hpp"
 
 using namespace xshell;
 using namespace xshell::test;
+using xshell::testing::corner_vertices;
+using xshell::testing::lath_options;
+using xshell::testing::square_grid;
 
 namespace {
 
@@ -40,35 +44,12 @@ LinkageProblem cantilever(int subdivisions, const Eigen::Vector3d& tip_force, do
   return xshell::testing::cantilever_beam(subdivisions, tip_force, w);
 }
 
-LineGraph square_grid(int n) {
-  LineGraph g;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) g.vertices.emplace_back(0.25 * j, 0.25 * i, 0.0);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const int v = i * n + j;
-      if (j + 1 < n) g.edges.push_back({v, v + 1});
-      if (i + 1 < n) g.edges.push_back({v, v + n});
-    }
-  return g;
-}
-
-LinkageOptions grid_material(int subdivisions = 6) {
-  LinkageOptions o;
-  o.subdivisions = subdivisions;
-  o.rest_shape = RestShape::Straight;
-  o.material.young_modulus = 2e10;
-  o.material.density = 1800;
-  o.material.section = {SectionShape::Rectangle, 0.01, 0.007};
-  return o;
-}
-
 LinkageProblem grid_under_gravity(int n, int subdivisions = 6) {
   StaticsSetup setup;
   setup.gravity = Eigen::Vector3d(0, 0, -9.81);
   for (int corner : {0, n - 1, n * (n - 1), n * n - 1})
     setup.supports.push_back({corner, {SupportDof::Position}});
-  return LinkageProblem(RodLinkage(square_grid(n), grid_material(subdivisions)), setup);
+  return LinkageProblem(RodLinkage(square_grid(n), lath_options(subdivisions)), setup);
 }
 
 Eigen::VectorXd stacked_positions(const LinkageProblem& problem) {
@@ -143,7 +124,7 @@ TEST_CASE("kinetic damping with scaled row sums does not depend on the length un
       const int n = 3;
       LineGraph g = square_grid(n);
       for (Eigen::Vector3d& v : g.vertices) v *= unit;
-      LinkageOptions o = grid_material(4);
+      LinkageOptions o = lath_options(4);
       o.material.young_modulus /= unit * unit;
       if (u == 1) o.material.density /= 1000.0 * unit * unit * unit;  // tonne / mm^3
       o.material.section = {SectionShape::Rectangle, 0.01 * unit, 0.007 * unit};
@@ -193,20 +174,6 @@ std::string scientific(double value) {
 
 double cpu_seconds_since(std::clock_t start) {
   return static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
-}
-
-// Vertices with the extreme x + y, x - y, -x + y, -x - y (the corners of a
-// roughly rectangular plan), distinct.
-std::vector<int> corner_vertices(const LineGraph& g) {
-  std::vector<int> corners;
-  for (const Eigen::Vector2d& d : {Eigen::Vector2d(1, 1), Eigen::Vector2d(1, -1),
-                                   Eigen::Vector2d(-1, 1), Eigen::Vector2d(-1, -1)}) {
-    int best = 0;
-    for (int v = 1; v < static_cast<int>(g.vertices.size()); ++v)
-      if (d.dot(g.vertices[v].head<2>()) > d.dot(g.vertices[best].head<2>())) best = v;
-    if (std::find(corners.begin(), corners.end(), best) == corners.end()) corners.push_back(best);
-  }
-  return corners;
 }
 
 // Solves make() by Newton, damped dynamics (at most dynamics_steps; none
@@ -335,7 +302,7 @@ std::function<LinkageProblem()> under_gravity(const LineGraph& graph) {
     StaticsSetup setup;
     setup.gravity = Eigen::Vector3d(0, 0, -9.81);
     for (int v : corner_vertices(graph)) setup.supports.push_back({v, {SupportDof::Position}});
-    LinkageOptions o = grid_material(4);
+    LinkageOptions o = lath_options(4);
     o.rest_shape = RestShape::Input;
     return LinkageProblem(RodLinkage(graph, o), setup);
   };
@@ -378,7 +345,7 @@ TEST_CASE("kinetic damping against Newton and damped dynamics: sphere_open from 
   }
   benchmark(
       "sphere_open.obj: rest shape straight, default pin, 4 edges/segment",
-      [&graph] { return LinkageProblem(RodLinkage(graph, grid_material(4)), StaticsSetup{}); },
+      [&graph] { return LinkageProblem(RodLinkage(graph, lath_options(4)), StaticsSetup{}); },
       1e-8, 1000, 400.0, {MassBound::RowSum});
 }
 
@@ -391,6 +358,6 @@ TEST_CASE("kinetic damping against Newton: sphere_open from straight with scaled
   }
   benchmark(
       "sphere_open.obj: rest shape straight, default pin, 4 edges/segment",
-      [&graph] { return LinkageProblem(RodLinkage(graph, grid_material(4)), StaticsSetup{}); },
+      [&graph] { return LinkageProblem(RodLinkage(graph, lath_options(4)), StaticsSetup{}); },
       1e-8, 0, 500.0, {MassBound::ScaledRowSum});
 }
