@@ -97,7 +97,7 @@ struct IdaIntegrator {
       check_sundials(IDASetId(m, id.get()), "IDASetId");
       check_sundials(IDASetSuppressAlg(m, SUNTRUE), "IDASetSuppressAlg");
     }
-    if (options.eta_max != 2.0) check_sundials(IDASetEtaMax(m, options.eta_max), "IDASetEtaMax");
+    check_sundials(IDASetEtaMax(m, options.eta_max), "IDASetEtaMax");
   }
 };
 
