@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "damping_choice.hpp"
+#include "definite_step_cap.hpp"
 #include "mass_and_damping.hpp"
 #include "newton.hpp"
 #include "objective_evaluator.hpp"
@@ -334,6 +335,14 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
     long last_rebase = 0;
     double t = 0.0;
     bool endgame = false;
+    // After a K that was not positive definite, steps as long are not tried
+    // again for a while (definite_step_cap.hpp). The cap is set as the
+    // factorization fails, so that IDA's next step obeys it.
+    DefiniteStepCap step_cap;
+    if (options.cap_indefinite_steps)
+      system.on_indefinite([&step_cap, &integrator](double cj) {
+        IDASetMaxStep(integrator.ida.get(), step_cap.on_failure(cj));
+      });
     for (;;) {
       if (callbacks.stop != nullptr && callbacks.stop->load()) {
         finish(DynamicsStatus::Interrupted, "stop flag raised");
@@ -367,6 +376,8 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         }
         break;
       }
+      // Lift the step cap once steps under it kept K positive definite.
+      if (step_cap.on_step()) check_sundials(IDASetMaxStep(integrator.ida.get(), 0.0), "IDASetMaxStep");
       ++result.steps;
       y = as_eigen(integrator.y.get());
       if (evaluator.move_to(y.data()) != 0) {  // IDA's corrected y was never evaluated
@@ -488,6 +499,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       }
     }
     accumulate_stats();
+    system.on_indefinite(nullptr);
     // Leave the objective at the last accepted state.
     evaluator.move_to(y.head(n));
     if (endgame) {

@@ -160,7 +160,10 @@ int DynamicsSystem::setup() {
     evaluator_.record(EvaluationFailure::NonFinite, "the Hessian is not finite");
     return SUNLS_PACKAGE_FAIL_REC;
   }
-  if (status == FactorizationStatus::NotPositiveDefinite) return SUNLS_PACKAGE_FAIL_REC;
+  if (status == FactorizationStatus::NotPositiveDefinite) {
+    if (on_indefinite_) on_indefinite_(cj);
+    return SUNLS_PACKAGE_FAIL_REC;
+  }
   setup_cj_ = cj;
   setup_t_ = t;
   setup_failed_ = false;

@@ -29,6 +29,9 @@
 // shorter step, which is the physically right reaction near a saddle.
 #pragma once
 
+#include <functional>
+#include <utility>
+
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
@@ -110,6 +113,10 @@ class DynamicsSystem final : public DirectSolveBackend {
 
   CholeskySolver& cholesky() { return cholesky_; }
   bool last_setup_failed() const { return setup_failed_; }
+  // Called from setup() with the c_j of a K that was not positive definite
+  // (before IDA picks its next step, so that a step cap set there applies
+  // to it). Must not throw.
+  void on_indefinite(std::function<void(double cj)> handler) { on_indefinite_ = std::move(handler); }
 
  private:
   double weight(double t) const;  // w of the blend at t (0 without one)
@@ -128,6 +135,7 @@ class DynamicsSystem final : public DirectSolveBackend {
   Eigen::SparseMatrix<double> work_;       // H + c_j (stiffness part of C)
   CholeskySolver cholesky_;
   bool setup_failed_ = false;
+  std::function<void(double)> on_indefinite_;
 };
 
 }  // namespace xshell

@@ -163,6 +163,34 @@ TEST_CASE("damped dynamics near the column's saddle") {
                                                 << " rejected: E + K rose), t = " << run.result.time);
     }
   }
+  SUBCASE("on the saddle, steps are held below a failed factorization") {
+    // Exactly straight, the column stays on its saddle, where K is positive
+    // definite only for short steps: without the cap IDA grows its step
+    // into the same failed factorization again and again.
+    for (DynamicsForm form : {DynamicsForm::SecondOrder, DynamicsForm::FirstOrder}) {
+      DynamicsResult runs[2];
+      Eigen::VectorXd ends[2];
+      for (bool cap : {false, true}) {
+        StencilObjective column = make_column({});
+        DynamicsOptions o = tight(form, MassModel::Physical);
+        o.cap_indefinite_steps = cap;
+        runs[cap] = run_dynamics(column, o).result;
+        ends[cap] = column.get();
+        INFO(label(o) << ", cap " << cap << ": " << runs[cap].reason);
+        REQUIRE(runs[cap].status == DynamicsStatus::Converged);
+        CHECK_FALSE(runs[cap].stable);
+      }
+      MESSAGE("straight column on its saddle, " << label(tight(form, MassModel::Physical))
+                                                << ": steps, factorizations (convergence failures) "
+                                                << runs[0].steps << ", " << runs[0].factorizations << " ("
+                                                << runs[0].convergence_failures << ") without the step cap, "
+                                                << runs[1].steps << ", " << runs[1].factorizations << " ("
+                                                << runs[1].convergence_failures << ") with it");
+      CHECK((ends[1] - ends[0]).norm() <= 1e-6 * ends[0].norm());
+      CHECK(runs[1].convergence_failures < runs[0].convergence_failures);
+      CHECK(runs[1].factorizations < runs[0].factorizations);
+    }
+  }
   SUBCASE("an exactly straight start stays on the saddle, reported unstable") {
     StencilObjective column = make_column({});
     const DynamicsRun run =
