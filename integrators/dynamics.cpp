@@ -120,9 +120,14 @@ void classify_failure(int flag, const ObjectiveEvaluator& evaluator, const Dynam
   if (nonfinite) {
     result.status = DynamicsStatus::NonFinite;
     result.reason = name + ": " + evaluator.last_message();
-  } else if (flag == IDA_LSETUP_FAIL || flag == IDA_LSOLVE_FAIL || system.last_setup_failed()) {
+  } else if (flag == IDA_LSETUP_FAIL || system.last_setup_failed()) {
     result.status = DynamicsStatus::LinearSolverFailed;
-    result.reason = name + ": K = H + (c_j^2 + c c_j) M not positive definite even for short steps";
+    result.reason = name + ": the implicit step's matrix K = H + c_j C + (c_j^2 + a c_j) M (H + c_j C " +
+                    "in first order) was not positive definite even for short steps";
+  } else if (flag == IDA_LSOLVE_FAIL) {
+    result.status = DynamicsStatus::LinearSolverFailed;
+    result.reason = name + ": the linear solve with K gave no finite correction even for short steps " +
+                    "(K numerically singular)";
   } else {
     result.status = DynamicsStatus::IntegratorFailed;
     result.reason = name + (invalid ? ": " + evaluator.last_message() : ": " + message);
@@ -372,7 +377,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         if (options.endgame_steps > 0.0 && t * system.damping().rate >= options.endgame_steps &&
             kinetic(y) <= 1e-6 * std::max(std::abs(energy0 - report.energy), std::abs(report.energy))) {
           evaluator.move_to(y.head(n));
-          endgame = is_positive_definite(system.cholesky(), objective.hessian());
+          endgame = is_positive_definite(estimator, objective.hessian());
         }
         break;
       }
@@ -439,9 +444,11 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       // and its steps have grown to many time constants. Implicit Euler
       // with an infinite step is a Newton step, so the remaining steps are
       // taken at that limit (Newton with the energy line search), once the
-      // Hessian is positive definite (a stable basin, not a saddle).
+      // Hessian is positive definite (a stable basin, not a saddle). The
+      // check factorizes with the estimator's solver: IDA goes on with its
+      // factorization of K when the Hessian is indefinite.
       if (options.endgame_steps > 0.0 && h * system.damping().rate >= options.endgame_steps &&
-          is_positive_definite(system.cholesky(), objective.hessian())) {
+          is_positive_definite(estimator, objective.hessian())) {
         last_good = y;
         endgame = true;
         break;
@@ -550,7 +557,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
   result.gradient_measure = weighted_max_norm(weights, evaluator.gradient());
   result.kinetic_energy = kinetic(y);
   if (result.status != DynamicsStatus::NonFinite)
-    result.stable = is_positive_definite(system.cholesky(), objective.hessian());
+    result.stable = is_positive_definite(estimator, objective.hessian());
   result.factorizations = estimator.stats().factorizations +
                           system.cholesky().stats().factorizations + extra_factorizations;
   result.seconds = seconds_since(start);

@@ -197,7 +197,7 @@ struct DynamicsOptions {
 enum class DynamicsStatus {
   Converged,  // gradient and kinetic criteria met
   MaxSteps,
-  LinearSolverFailed,  // IDA could not factorize K even with short steps
+  LinearSolverFailed,  // K could not be factorized, or gave no finite correction, even for short steps
   IntegratorFailed,    // other IDA failures (error test, convergence, steps stagnating
                        // below 1e-12 t), or invalid configurations
   NonFinite,           // NaN/inf in the energy, gradient or Hessian

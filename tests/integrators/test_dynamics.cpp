@@ -191,6 +191,20 @@ TEST_CASE("damped dynamics near the column's saddle") {
       CHECK(runs[1].factorizations < runs[0].factorizations);
     }
   }
+  SUBCASE("checking the Hessian for the end game on the saddle leaves IDA's factorization alone") {
+    // With an early end game, the Hessian is checked (and found indefinite)
+    // while IDA is still integrating with its own factorization of K.
+    for (DynamicsForm form : {DynamicsForm::SecondOrder, DynamicsForm::FirstOrder}) {
+      StencilObjective column = make_column({});
+      DynamicsOptions o = tight(form, MassModel::Physical);
+      o.endgame_steps = 1.0;
+      const DynamicsRun run = run_dynamics(column, o);
+      INFO(label(o) << ": " << run.result.reason);
+      REQUIRE(run.result.status == DynamicsStatus::Converged);
+      CHECK_FALSE(run.result.stable);
+      CHECK(column.get()[middle] == 0.0);
+    }
+  }
   SUBCASE("an exactly straight start stays on the saddle, reported unstable") {
     StencilObjective column = make_column({});
     const DynamicsRun run =
