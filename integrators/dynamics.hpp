@@ -167,7 +167,7 @@ struct DynamicsOptions {
   // After a factorization of IDA's Jacobian failed (not positive definite,
   // near a saddle), hold the step below the failed one for a while
   // (definite_step_cap.hpp) instead of letting IDA grow it into the same
-  // failure. The largest design from flat: 155 -> 42 factorizations.
+  // failure. The largest design from flat: 159 -> 42 factorizations.
   bool cap_indefinite_steps = true;
   // Largest growth of the step from one step to the next (IDA's default is
   // 2). The step grows from the start's 1e-5 time constants to hundreds of
