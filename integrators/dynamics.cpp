@@ -335,10 +335,31 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
                              relative_tolerance, n, q_only);
       check_sundials(IDASetInitStep(m, h_first), "IDASetInitStep");
     };
+    double t = 0.0;
+    // Rejects the step of length h just taken: IDA restarts from last_good
+    // with half of it (at order 1, backward Euler, as every restart).
+    // Returns false, the run finished, when that step would be stagnant.
+    auto retry_shorter = [&](double h, const std::string& why) {
+      ++result.rejected_steps;
+      y = last_good;
+      t = last_good_t;
+      if (0.5 * h <= kStagnantStepRatio * t) {  // the objective is moved to y below the loop
+        finish(DynamicsStatus::IntegratorFailed,
+               why + " even for steps of " + scientific(0.5 * h) + " at t = " + scientific(t));
+        return false;
+      }
+      if (evaluator.move_to(y.data()) != 0) {
+        evaluator.rethrow_if_fatal();
+        finish(DynamicsStatus::IntegratorFailed,
+               "the objective rejected an accepted state: " + evaluator.last_message());
+        return false;
+      }
+      restart_at(t, 0.5 * h);
+      return true;
+    };
     Eigen::VectorXd rebased_at = y.head(n);
     Eigen::VectorXd refreshed_at = y.head(n);
     long last_rebase = 0;
-    double t = 0.0;
     bool endgame = false;
     // After a K that was not positive definite, steps as long are not tried
     // again for a while (definite_step_cap.hpp). The cap is set as the
@@ -383,17 +404,19 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       }
       // Lift the step cap once steps under it kept K positive definite.
       if (step_cap.on_step()) check_sundials(IDASetMaxStep(integrator.ida.get(), 0.0), "IDASetMaxStep");
-      ++result.steps;
-      y = as_eigen(integrator.y.get());
-      if (evaluator.move_to(y.data()) != 0) {  // IDA's corrected y was never evaluated
-        evaluator.rethrow_if_fatal();
-        finish(DynamicsStatus::IntegratorFailed,
-               "the objective rejected an accepted step: " + evaluator.last_message());
-        y = last_good;
-        break;
-      }
       double h = 0.0;
       IDAGetLastStep(integrator.ida.get(), &h);
+      y = as_eigen(integrator.y.get());
+      // IDA's last Newton correction lands on a y it never evaluated. When
+      // that y is invalid (a rod's terminal edge through its joint, say),
+      // the step is taken again, shorter, as a rejected step.
+      if (evaluator.move_to(y.data()) != 0) {
+        evaluator.rethrow_if_fatal();
+        if (!retry_shorter(h, "the objective rejects the accepted state (" + evaluator.last_message() + ")"))
+          break;
+        continue;
+      }
+      ++result.steps;
       IDAGetLastOrder(integrator.ida.get(), &report.order);
       report.step = result.steps;
       report.time = t;
@@ -405,24 +428,9 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       if (options.dissipation_guard > 0.0 && std::isfinite(total) &&
           total - last_total > options.dissipation_guard * std::max(total0 - last_total, 0.0) +
                                    1e-12 * std::abs(report.energy)) {
-        // E + K rose: the step is taken again from last_good, half as long,
-        // by backward Euler (see DynamicsOptions).
+        // E + K rose: the step is taken again (see DynamicsOptions).
         --result.steps;
-        ++result.rejected_steps;
-        y = last_good;
-        t = last_good_t;
-        if (0.5 * h <= kStagnantStepRatio * t) {  // the objective is moved to y below the loop
-          finish(DynamicsStatus::IntegratorFailed,
-                 "E + K rises even for steps of " + scientific(0.5 * h) + " at t = " + scientific(t));
-          break;
-        }
-        if (evaluator.move_to(y.data()) != 0) {
-          evaluator.rethrow_if_fatal();
-          finish(DynamicsStatus::IntegratorFailed,
-                 "the objective rejected an accepted state: " + evaluator.last_message());
-          break;
-        }
-        restart_at(t, 0.5 * h);
+        if (!retry_shorter(h, "E + K rises")) break;
         continue;
       }
       if (callbacks.on_step) callbacks.on_step(report);

@@ -240,7 +240,8 @@ struct DynamicsResult {
   long rebases = 0;
   long refreshes = 0;      // damping refreshes
   long endgame_steps = 0;  // steps of infinite length (Newton) at the end
-  long rejected_steps = 0;  // steps rejected by dissipation_guard (not counted in steps)
+  long rejected_steps = 0;  // steps retried shorter: by dissipation_guard, or ending in an invalid
+                            // configuration (not counted in steps)
   double seconds = 0.0;
   bool converged() const { return status == DynamicsStatus::Converged; }
 };

@@ -338,3 +338,70 @@ TEST_CASE("an unexpected exception inside an IDA callback reaches the caller") {
                   std::runtime_error);
   CHECK(faulty.calls() >= 5);
 }
+
+namespace {
+
+// Forwards to another objective, except that its set() call number
+// `invalid_call` (from 1; 0: none) throws std::domain_error, as the rod model
+// does for a configuration it cannot evaluate.
+class InvalidAtCall : public Objective {
+ public:
+  InvalidAtCall(Objective& inner, long invalid_call) : inner_(inner), invalid_call_(invalid_call) {}
+
+  Eigen::Index size() const override { return inner_.size(); }
+  Eigen::VectorXd get() const override { return inner_.get(); }
+  void set(const Eigen::VectorXd& q) override {
+    if (++calls_ == invalid_call_) throw std::domain_error("InvalidAtCall: invalid configuration");
+    inner_.set(q);
+  }
+  double energy() const override { return inner_.energy(); }
+  Eigen::VectorXd gradient() const override { return inner_.gradient(); }
+  const Eigen::SparseMatrix<double>& hessian() override { return inner_.hessian(); }
+  Eigen::VectorXd gradient_weights() const override { return inner_.gradient_weights(); }
+  Eigen::VectorXd mass() const override { return inner_.mass(); }
+  long calls() const { return calls_; }
+
+ private:
+  Objective& inner_;
+  long invalid_call_;
+  long calls_ = 0;
+};
+
+}  // namespace
+
+TEST_CASE("an accepted step that ends in an invalid configuration is taken again, shorter") {
+  // IDA accepts the state of its last Newton correction without evaluating
+  // it. A first run records the set() call that moves the objective to the
+  // state of step 5; a second, identical run finds that state invalid.
+  for (DynamicsForm form : {DynamicsForm::SecondOrder, DynamicsForm::FirstOrder}) {
+    const DynamicsOptions options = tight(form, MassModel::Physical);
+    CAPTURE(label(options));
+    StencilObjective reference_chain = make_chain();
+    InvalidAtCall reference(reference_chain, 0);
+    std::vector<long> calls_at_step;
+    std::vector<double> energies;
+    DynamicsCallbacks callbacks;
+    callbacks.on_step = [&](const DynamicsReport& r) {
+      calls_at_step.push_back(reference.calls());
+      energies.push_back(r.energy);
+    };
+    const DynamicsResult clean = solve_dynamics(reference, options, callbacks);
+    REQUIRE(clean.converged());
+    REQUIRE(calls_at_step.size() > 6);
+    REQUIRE(calls_at_step[5] > calls_at_step[4]);  // step 5's state was moved to
+
+    StencilObjective chain = make_chain();
+    InvalidAtCall invalid(chain, calls_at_step[5]);
+    const DynamicsRun run = run_dynamics(invalid, options);
+    INFO(run.result.reason);
+    CHECK(invalid.calls() >= calls_at_step[5]);
+    REQUIRE(run.result.converged());
+    CHECK(run.result.rejected_steps == clean.rejected_steps + 1);
+    CHECK(run.result.stable);
+    CHECK((chain.configuration() - reference_chain.configuration()).norm() <=
+          1e-8 * reference_chain.configuration().norm());
+    // The steps before the invalid state are those of the clean run.
+    REQUIRE(run.reports.size() > 5);
+    for (size_t k = 0; k < 5; ++k) CHECK(run.reports[k].energy == energies[k]);
+  }
+}
