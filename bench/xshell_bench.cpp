@@ -11,7 +11,9 @@
 //   (CholeskySolver, symbolic analysis reused), the whole Newton iteration
 //   (median over the iterations of a solve, from NewtonReport::seconds),
 // and the solve itself (Newton to gradient tolerance 1e-6): iterations and
-// time. With --solvers, the same relaxation also by damped dynamics (IDA,
+// time. The bundled samples (samples/*.obj) are relaxed as configured by
+// samples/grid_gravity.json instead (SI units, gravity, a point load, four
+// supports), the saddle with that file's settings too. With --solvers, the same relaxation also by damped dynamics (IDA,
 // second order, the defaults of `xshell relax --solver dynamics`) and by
 // kinetic damping (at most --kinetic-limit iterations): steps or
 // iterations, wall time, and the ratio to Newton's. Each case runs in a
@@ -19,7 +21,7 @@
 //
 //   xshell_bench [--quick] [--reps N] [--graphs all|none|NAME,...] [--subdivisions 8,10]
 //                [--grids 4,8,14,25,44] [--no-solve] [--solvers] [--kinetic-limit N]
-//                [--csv FILE] [--data DIR]
+//                [--samples all|none] [--csv FILE] [--data DIR]
 #include <CLI/CLI.hpp>
 #include <dlfcn.h>
 #include <sys/resource.h>
@@ -35,6 +37,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -49,7 +52,9 @@
 #include "integrators/kinetic_damping.hpp"
 #include "integrators/linkage_objective.hpp"
 #include "integrators/newton.hpp"
+#include "io/config.hpp"
 #include "io/obj_reader.hpp"
+#include "io/problem_setup.hpp"
 #include "linkage/statics_problem.hpp"
 
 namespace {
@@ -61,10 +66,11 @@ namespace fs = std::filesystem;
 
 struct BenchCase {
   std::string name;
-  std::string kind;  // "graph" or "grid"
+  std::string kind;  // "graph", "grid" or "sample"
   LineGraph graph;
   int subdivisions = 8;
   bool gravity = false;
+  std::shared_ptr<const ProblemSetup> setup;  // a sample's, from its configuration; else the fields above
 };
 
 // What run_case measures besides the factorization costs.
@@ -144,6 +150,7 @@ LineGraph wavy_grid(int n) {
 }
 
 LinkageProblem make_problem(const BenchCase& c) {
+  if (c.setup) return LinkageProblem(RodLinkage(c.setup->graph, c.setup->options), c.setup->statics);
   LineGraph graph = c.graph;
   Eigen::Vector3d lo = graph.vertices.at(0), hi = lo;
   for (const auto& v : graph.vertices) {
@@ -401,6 +408,7 @@ int main(int argc, char** argv) {
   int reps = 5;
   std::string graphs = "designs", subdivisions = "8,10", grids = "4,8,14,25,44", csv = "xshell_bench.csv";
   std::string data = std::string(XSHELL_SOURCE_DIR) + "/../shared/data/elasticrods";
+  std::string samples = "all";
   app.add_flag("--quick", quick, "two small designs at subdivision 8, grids 4,8,14, 3 repetitions");
   app.add_option("--reps", reps, "repetitions of each timing (median reported)")->check(CLI::PositiveNumber);
   app.add_option("--graphs", graphs,
@@ -411,6 +419,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-solve", no_solve, "skip the Newton solves");
   app.add_flag("--solvers", solvers, "also relax by damped dynamics and kinetic damping, with ratios to Newton");
   app.add_option("--kinetic-limit", kinetic_limit, "iteration limit of kinetic damping")->check(CLI::PositiveNumber);
+  app.add_option("--samples", samples,
+                 "\"all\": the bundled samples (samples/*.obj) with samples/grid_gravity.json's settings; \"none\"")
+      ->check(CLI::IsMember({"all", "none"}));
   app.add_option("--csv", csv, "CSV file to write");
   app.add_option("--data", data, "folder of the real linkage graphs");
   CLI11_PARSE(app, argc, argv);
@@ -453,6 +464,24 @@ int main(int argc, char** argv) {
           c.subdivisions = n;
           cases.push_back(c);
         }
+    }
+  }
+  if (samples == "all") {
+    // Each sample with the material, supports and loads of grid_gravity.json.
+    const fs::path folder = fs::path(XSHELL_SOURCE_DIR) / "samples";
+    const Config config = read_config((folder / "grid_gravity.json").string());
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(folder))
+      if (entry.path().extension() == ".obj") files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    for (const auto& path : files) {
+      BenchCase c;
+      c.name = "samples/" + path.stem().string();
+      c.kind = "sample";
+      c.setup = std::make_shared<const ProblemSetup>(make_problem_setup(config, read_obj(path.string())));
+      c.subdivisions = c.setup->options.subdivisions;
+      c.gravity = c.setup->statics.gravity.squaredNorm() > 0.0;
+      cases.push_back(c);
     }
   }
   for (int n : parse_ints(grids))
