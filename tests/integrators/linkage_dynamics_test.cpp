@@ -320,9 +320,10 @@ TEST_CASE("Started on the slow manifold, the second-order form skips the initial
   MESSAGE("saddle sample, second order: " << steps[0] << " steps from rest, " << steps[1]
                                           << " from the slow manifold");
   CHECK(std::abs(energy[1] - energy[0]) <= 1e-7 * std::abs(energy[0]));
-  // Measured 97 from rest and 78 from the slow manifold (105 and 85 with
-  // eta_max 2, 202 and 119 with the velocities in the error test).
-  CHECK(steps[1] <= 90);
+  // Measured 90 from rest and 70 from the slow manifold (97 and 78 with
+  // rtol 1e-2, 105 and 85 with eta_max 2, 202 and 119 with the velocities
+  // in the error test).
+  CHECK(steps[1] <= 80);
   CHECK(steps[1] <= 0.9 * steps[0]);
 }
 
