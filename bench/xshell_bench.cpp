@@ -11,11 +11,11 @@
 //   (CholeskySolver, symbolic analysis reused), the whole Newton iteration
 //   (median over the iterations of a solve, from NewtonReport::seconds),
 // and the solve itself (Newton to gradient tolerance 1e-6): iterations and
-// time. The bundled samples (samples/*.obj) are relaxed as configured by
-// samples/grid_gravity.json instead (SI units, gravity, a point load, four
-// supports), the saddle with that file's settings too. With --solvers, the same relaxation also by damped dynamics (IDA,
-// second order, the defaults of `xshell relax --solver dynamics`) and by
-// kinetic damping (at most --kinetic-limit iterations): steps or
+// time. The bundled samples (samples/*.obj) are relaxed instead with the
+// settings of samples/grid_gravity.json (SI units, gravity, a point load,
+// four supports). With --solvers, the same relaxation also by damped
+// dynamics (IDA, second order, the defaults of `xshell relax --solver
+// dynamics`) and by kinetic damping (at most --kinetic-limit iterations): steps or
 // iterations, wall time, and the ratio to Newton's. Each case runs in a
 // child process, so that its peak memory (getrusage) is its own.
 //

@@ -339,36 +339,6 @@ TEST_CASE("an unexpected exception inside an IDA callback reaches the caller") {
   CHECK(faulty.calls() >= 5);
 }
 
-namespace {
-
-// Forwards to another objective, except that its set() call number
-// `invalid_call` (from 1; 0: none) throws std::domain_error, as the rod model
-// does for a configuration it cannot evaluate.
-class InvalidAtCall : public Objective {
- public:
-  InvalidAtCall(Objective& inner, long invalid_call) : inner_(inner), invalid_call_(invalid_call) {}
-
-  Eigen::Index size() const override { return inner_.size(); }
-  Eigen::VectorXd get() const override { return inner_.get(); }
-  void set(const Eigen::VectorXd& q) override {
-    if (++calls_ == invalid_call_) throw std::domain_error("InvalidAtCall: invalid configuration");
-    inner_.set(q);
-  }
-  double energy() const override { return inner_.energy(); }
-  Eigen::VectorXd gradient() const override { return inner_.gradient(); }
-  const Eigen::SparseMatrix<double>& hessian() override { return inner_.hessian(); }
-  Eigen::VectorXd gradient_weights() const override { return inner_.gradient_weights(); }
-  Eigen::VectorXd mass() const override { return inner_.mass(); }
-  long calls() const { return calls_; }
-
- private:
-  Objective& inner_;
-  long invalid_call_;
-  long calls_ = 0;
-};
-
-}  // namespace
-
 TEST_CASE("an accepted step that ends in an invalid configuration is taken again, shorter") {
   // IDA accepts the state of its last Newton correction without evaluating
   // it. A first run records the set() call that moves the objective to the

@@ -80,16 +80,16 @@ class OffsetObjective : public Objective {
   long rebases_ = 0;
 };
 
-// Forwards to another objective, but its set() throws std::runtime_error
-// (not a domain_error: a bug, say) from the `fail_at`-th call on.
-class FaultyObjective : public Objective {
+// Forwards to another objective and counts the calls of set(); derived
+// classes make some of those calls fail (before_set throws).
+class ForwardingObjective : public Objective {
  public:
-  FaultyObjective(Objective& inner, long fail_at) : inner_(inner), fail_at_(fail_at) {}
+  explicit ForwardingObjective(Objective& inner) : inner_(inner) {}
 
   Eigen::Index size() const override { return inner_.size(); }
   Eigen::VectorXd get() const override { return inner_.get(); }
   void set(const Eigen::VectorXd& q) override {
-    if (++calls_ >= fail_at_) throw std::runtime_error("FaultyObjective: simulated bug");
+    before_set(++calls_);
     inner_.set(q);
   }
   double energy() const override { return inner_.energy(); }
@@ -99,10 +99,44 @@ class FaultyObjective : public Objective {
   Eigen::VectorXd mass() const override { return inner_.mass(); }
   long calls() const { return calls_; }
 
+ protected:
+  // Called with the number of this set() call (from 1) before it forwards.
+  virtual void before_set(long call) { (void)call; }
+
  private:
   Objective& inner_;
-  long fail_at_;
   long calls_ = 0;
+};
+
+// Its set() throws std::runtime_error (not a domain_error: a bug, say) from
+// the `fail_at`-th call on.
+class FaultyObjective : public ForwardingObjective {
+ public:
+  FaultyObjective(Objective& inner, long fail_at) : ForwardingObjective(inner), fail_at_(fail_at) {}
+
+ protected:
+  void before_set(long call) override {
+    if (call >= fail_at_) throw std::runtime_error("FaultyObjective: simulated bug");
+  }
+
+ private:
+  long fail_at_;
+};
+
+// Its set() call number `invalid_call` (from 1; 0: none) throws
+// std::domain_error, as the rod model does for a configuration it cannot
+// evaluate.
+class InvalidAtCall : public ForwardingObjective {
+ public:
+  InvalidAtCall(Objective& inner, long invalid_call) : ForwardingObjective(inner), invalid_call_(invalid_call) {}
+
+ protected:
+  void before_set(long call) override {
+    if (call == invalid_call_) throw std::domain_error("InvalidAtCall: invalid configuration");
+  }
+
+ private:
+  long invalid_call_;
 };
 
 enum class InvalidBehaviour { Throw, NaN };
