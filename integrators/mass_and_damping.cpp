@@ -46,7 +46,8 @@ LowestMode estimate_lowest_mode(CholeskySolver& solver, const Eigen::SparseMatri
 
 ModeEstimate estimate_modes(CholeskySolver& solver, const Eigen::SparseMatrix<double>& H,
                             const Eigen::VectorXd& mass, int iterations, const ShiftOptions& shift,
-                            int max_unstable, const ModeEstimate* warm, double zero_floor) {
+                            int max_unstable, const ModeEstimate* warm, double zero_floor,
+                            double converged_change) {
   ModeEstimate estimate;
   LowestMode& mode = estimate.lowest;
   const ShiftedFactorization f = factorize_with_shift(solver, H, mass, shift);
@@ -74,10 +75,17 @@ ModeEstimate estimate_modes(CholeskySolver& solver, const Eigen::SparseMatrix<do
       y /= std::sqrt(m_dot(y, y));
     };
     project(x);
+    double theta_before = 0.0;
     for (int k = 0; k < iterations; ++k) {
-      x = solver.solve(Eigen::VectorXd(mass.cwiseProduct(x)));
+      Eigen::VectorXd y = solver.solve(Eigen::VectorXd(mass.cwiseProduct(x)));
+      // theta = x'M (H + sM)^-1 M x, the Rayleigh quotient of the iteration's
+      // operator (1 / (lambda + s) at an eigenvector), from the solve made.
+      const double theta = m_dot(x, y);
+      x = std::move(y);
       project(x);
       ++m.iterations;
+      if (k > 0 && std::abs(theta - theta_before) < converged_change * std::abs(theta)) break;
+      theta_before = theta;
     }
     m.eigenvalue = x.dot(H * x);
     m.ok = std::isfinite(m.eigenvalue);

@@ -53,11 +53,15 @@ struct ModeEstimate {
 };
 // Modes with eigenvalues at or below zero_floor (zero modes, such as the
 // rigid swing of a free arm) count as not stable: `stable` is the lowest
-// mode above it.
+// mode above it. Each mode's iteration ends before `iterations` once the
+// Rayleigh quotient of (H + s M)^-1 M changes by less than converged_change
+// (relative) from one iteration to the next: a mode well separated from
+// the next one needs only a few solves.
 ModeEstimate estimate_modes(CholeskySolver& solver, const Eigen::SparseMatrix<double>& H,
                             const Eigen::VectorXd& mass, int iterations = 20,
                             const ShiftOptions& shift = {}, int max_unstable = 4,
-                            const ModeEstimate* warm = nullptr, double zero_floor = 0.0);
+                            const ModeEstimate* warm = nullptr, double zero_floor = 0.0,
+                            double converged_change = 1e-6);
 
 // c = 2 sqrt(|lambda_min|) (critical damping of the slowest mode; near a
 // saddle, |lambda_min| is the growth rate scale of the unstable mode),

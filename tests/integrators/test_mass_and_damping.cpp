@@ -66,3 +66,47 @@ TEST_CASE("inverse iteration finds the lowest eigenvalue of (H, M)") {
   CHECK(automatic_damping(unstable, K, mass) ==
         doctest::Approx(2.0 * std::sqrt(-negative)).epsilon(1e-6));
 }
+
+TEST_CASE("mode estimate: unstable and lowest stable modes, each iteration stopped once converged") {
+  auto diagonal = [](std::initializer_list<double> values) {
+    Eigen::VectorXd d(static_cast<Eigen::Index>(values.size()));
+    Eigen::Index i = 0;
+    for (double v : values) d[i++] = v;
+    return blocks(d, 0.0);
+  };
+  const Eigen::VectorXd mass = Eigen::VectorXd::Constant(8, 0.5);
+  CholeskySolver solver;
+
+  // Positive definite, the lowest mode far below the next: the Rayleigh
+  // quotient settles in a few solves.
+  const Eigen::SparseMatrix<double> separated = diagonal({100.0, 1.0, 120.0, 140.0, 160.0, 180.0, 200.0, 220.0});
+  const ModeEstimate fast = estimate_modes(solver, separated, mass, 20);
+  REQUIRE(fast.lowest.ok);
+  CHECK_FALSE(fast.lowest.shifted);
+  CHECK(fast.unstable_modes == 0);
+  CHECK(fast.lowest.eigenvalue == doctest::Approx(2.0).epsilon(1e-10));
+  CHECK(fast.lowest.iterations <= 5);
+  // The next mode at 1.5 times the lowest: more iterations, same accuracy.
+  const Eigen::SparseMatrix<double> close = diagonal({3.0, 2.0, 120.0, 140.0, 160.0, 180.0, 200.0, 220.0});
+  const ModeEstimate slow = estimate_modes(solver, close, mass, 40);
+  REQUIRE(slow.lowest.ok);
+  CHECK(slow.lowest.iterations > fast.lowest.iterations + 3);
+  CHECK(slow.lowest.iterations < 40);
+  CHECK(slow.lowest.eigenvalue == doctest::Approx(4.0).epsilon(1e-5));
+  // With no early stop, every iteration is made.
+  const ModeEstimate all = estimate_modes(solver, separated, mass, 20, {}, 4, nullptr, 0.0, 0.0);
+  CHECK(all.lowest.iterations == 20);
+
+  // Two unstable modes, then the lowest stable one. The shift s > 6 puts the
+  // iteration's eigenvalues 1 / (lambda + s) close together: a relative
+  // change of 1e-6 at the stop leaves errors near 1e-5 in lambda.
+  const Eigen::SparseMatrix<double> saddle = diagonal({50.0, -1.0, 60.0, 1.0, -3.0, 70.0, 80.0, 90.0});
+  const ModeEstimate modes = estimate_modes(solver, saddle, mass, 40);
+  REQUIRE(modes.lowest.ok);
+  CHECK(modes.lowest.shifted);
+  CHECK(modes.unstable_modes == 2);
+  CHECK(modes.lowest.eigenvalue == doctest::Approx(-6.0).epsilon(1e-4));
+  REQUIRE(modes.stable.ok);
+  CHECK(modes.stable.eigenvalue == doctest::Approx(2.0).epsilon(1e-4));
+  CHECK(modes.certified_shift > 6.0);
+}
