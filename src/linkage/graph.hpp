@@ -18,4 +18,8 @@ struct LineGraph {
 // Number of edges incident to each vertex.
 std::vector<int> valences(const LineGraph& graph);
 
+// Vertices with the extreme x + y, x - y, -x + y, -x - y (the corners of a
+// roughly rectangular plan), distinct, in that order of directions.
+std::vector<int> corner_vertices(const LineGraph& graph);
+
 }  // namespace xshell

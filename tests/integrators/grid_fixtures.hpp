@@ -1,5 +1,5 @@
-// Grids of straight laths for the solver tests: a square grid graph, the
-// laths' material (SI units), and the corners of a roughly rectangular plan.
+// Grids of straight laths for the solver tests: a square grid graph and the
+// laths' material (SI units).
 #pragma once
 
 #include <Eigen/Core>
@@ -36,18 +36,7 @@ inline LinkageOptions lath_options(int subdivisions = 6) {
   return o;
 }
 
-// Vertices with the extreme x + y, x - y, -x + y, -x - y (the corners of a
-// roughly rectangular plan), distinct.
-inline std::vector<int> corner_vertices(const LineGraph& g) {
-  std::vector<int> corners;
-  for (const Eigen::Vector2d& d : {Eigen::Vector2d(1, 1), Eigen::Vector2d(1, -1),
-                                   Eigen::Vector2d(-1, 1), Eigen::Vector2d(-1, -1)}) {
-    int best = 0;
-    for (int v = 1; v < static_cast<int>(g.vertices.size()); ++v)
-      if (d.dot(g.vertices[v].head<2>()) > d.dot(g.vertices[best].head<2>())) best = v;
-    if (std::find(corners.begin(), corners.end(), best) == corners.end()) corners.push_back(best);
-  }
-  return corners;
-}
+// The corners of a roughly rectangular plan (linkage/graph.hpp).
+using xshell::corner_vertices;
 
 }  // namespace xshell::testing
