@@ -88,7 +88,8 @@ struct IdaIntegrator {
       check_sundials(IDASetInitStep(m, options.initial_step), "IDASetInitStep");
     // The gradient flow at BDF orders 3-5 (not A-stable) let the energy rise
     // by 1e-6 of its drop while a column buckled; orders 1-2 do not.
-    const int order = system.form() == DynamicsForm::FirstOrder ? std::min(2, options.max_order) : options.max_order;
+    const int order = system.form() == DynamicsForm::FirstOrder ? std::min(2, options.max_order)
+                                                                : options.max_order;
     check_sundials(IDASetMaxOrd(m, order), "IDASetMaxOrd");
     if (options.suppress_velocity && size > system.unknowns()) {
       id = make_serial_vector(size, context);
@@ -122,11 +123,13 @@ void classify_failure(int flag, const ObjectiveEvaluator& evaluator, const Dynam
     result.reason = name + ": " + evaluator.last_message();
   } else if (flag == IDA_LSETUP_FAIL || system.last_setup_failed()) {
     result.status = DynamicsStatus::LinearSolverFailed;
-    result.reason = name + ": the implicit step's matrix K = H + c_j C + (c_j^2 + a c_j) M (H + c_j C " +
+    result.reason = name +
+                    ": the implicit step's matrix K = H + c_j C + (c_j^2 + a c_j) M (H + c_j C " +
                     "in first order) was not positive definite even for short steps";
   } else if (flag == IDA_LSOLVE_FAIL) {
     result.status = DynamicsStatus::LinearSolverFailed;
-    result.reason = name + ": the linear solve with K gave no finite correction even for short steps " +
+    result.reason = name +
+                    ": the linear solve with K gave no finite correction even for short steps " +
                     "(K numerically singular)";
   } else {
     result.status = DynamicsStatus::IntegratorFailed;
@@ -166,8 +169,8 @@ double weighted_rms(const ConstRef& x, const ConstRef& y, const ConstRef& atol, 
 // (second order, suppress), that norm sees only q' = v, which is zero at
 // rest. The step is then sized from the motion of q: v h and a h^2 / 2
 // (a = v') half the error test's tolerance. 0: no estimate.
-double first_step(const ConstRef& y, const ConstRef& yp, const ConstRef& atol, double rtol, Eigen::Index n,
-                  bool q_only) {
+double first_step(const ConstRef& y, const ConstRef& yp, const ConstRef& atol, double rtol,
+                  Eigen::Index n, bool q_only) {
   double h = std::numeric_limits<double>::infinity();
   if (q_only) {
     const double v = weighted_rms(yp.head(n), y, atol, rtol);
@@ -329,7 +332,8 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       void* m = integrator.ida.get();
       check_sundials(IDAReInit(m, time, integrator.y.get(), integrator.yp.get()), "IDAReInit");
       as_eigen(integrator.atol.get()) = absolute_tolerances();
-      check_sundials(IDASVtolerances(m, relative_tolerance, integrator.atol.get()), "IDASVtolerances");
+      check_sundials(IDASVtolerances(m, relative_tolerance, integrator.atol.get()),
+                     "IDASVtolerances");
       if (!(h_first > 0.0))
         h_first = first_step(y, as_eigen(integrator.yp.get()), as_eigen(integrator.atol.get()),
                              relative_tolerance, n, q_only);
@@ -365,199 +369,230 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
     // again for a while (definite_step_cap.hpp). The cap is set as the
     // factorization fails, so that IDA's next step obeys it.
     DefiniteStepCap step_cap;
+    // An end game that does not converge hands back to the dynamics, which
+    // then waits for steps endgame_growth times longer before the next.
+    double endgame_threshold = options.endgame_steps;
     if (options.cap_indefinite_steps)
       system.on_indefinite([&step_cap, &integrator](double cj) {
         IDASetMaxStep(integrator.ida.get(), step_cap.on_failure(cj));
       });
-    for (;;) {
-      if (callbacks.stop != nullptr && callbacks.stop->load()) {
-        finish(DynamicsStatus::Interrupted, "stop flag raised");
-        break;
-      }
-      if (result.steps >= options.max_steps) {
-        finish(DynamicsStatus::MaxSteps,
-               "no convergence in " + std::to_string(result.steps) + " steps");
-        break;
-      }
-      evaluator.clear_failures();
-      const int flag = IDASolve(integrator.ida.get(), t + 1e10 * time_scale, &t, integrator.y.get(),
-                                integrator.yp.get(), IDA_ONE_STEP);
-      if (evaluator.has_fatal()) {  // an unexpected exception in a callback
-        try {
-          objective.set(last_good.head(n));
-        } catch (...) {
-        }
-        evaluator.rethrow_if_fatal();
-      }
-      if (flag < 0) {
-        classify_failure(flag, evaluator, system, integrator.last_message, result);
-        y = last_good;
-        // IDA gave up late in a run whose motion had died out (error tests
-        // at the round-off floor of the residual): the end game can still
-        // finish it from the last accepted state if that is a stable basin.
-        if (options.endgame_steps > 0.0 && t * system.damping().rate >= options.endgame_steps &&
-            kinetic(y) <= 1e-6 * std::max(std::abs(energy0 - report.energy), std::abs(report.energy))) {
-          evaluator.move_to(y.head(n));
-          endgame = is_positive_definite(estimator, objective.hessian());
-        }
-        break;
-      }
-      // Lift the step cap once steps under it kept K positive definite.
-      if (step_cap.on_step()) check_sundials(IDASetMaxStep(integrator.ida.get(), 0.0), "IDASetMaxStep");
-      double h = 0.0;
-      IDAGetLastStep(integrator.ida.get(), &h);
-      y = as_eigen(integrator.y.get());
-      // IDA's last Newton correction lands on a y it never evaluated. When
-      // that y is invalid (a rod's terminal edge through its joint, say),
-      // the step is taken again, shorter, as a rejected step.
-      if (evaluator.move_to(y.data()) != 0) {
-        evaluator.rethrow_if_fatal();
-        if (!retry_shorter(h, "the objective rejects the accepted state (" + evaluator.last_message() + ")"))
+    for (;;) {  // damped dynamics, then the end game; again if that fails
+      for (;;) {
+        if (callbacks.stop != nullptr && callbacks.stop->load()) {
+          finish(DynamicsStatus::Interrupted, "stop flag raised");
           break;
-        continue;
-      }
-      ++result.steps;
-      IDAGetLastOrder(integrator.ida.get(), &report.order);
-      report.step = result.steps;
-      report.time = t;
-      report.step_size = h;
-      report.energy = objective.energy();
-      report.kinetic_energy = kinetic(y);
-      report.gradient_measure = weighted_max_norm(weights, evaluator.gradient());
-      const double total = report.energy + report.kinetic_energy;
-      if (options.dissipation_guard > 0.0 && std::isfinite(total) &&
-          total - last_total > options.dissipation_guard * std::max(total0 - last_total, 0.0) +
-                                   1e-12 * std::abs(report.energy)) {
-        // E + K rose: the step is taken again (see DynamicsOptions).
-        --result.steps;
-        if (!retry_shorter(h, "E + K rises")) break;
-        continue;
-      }
-      if (callbacks.on_step) callbacks.on_step(report);
-      if (!std::isfinite(report.energy) || !std::isfinite(report.gradient_measure) ||
-          !y.allFinite()) {
-        finish(DynamicsStatus::NonFinite,
-               "non-finite state after step " + std::to_string(result.steps));
-        y = last_good;
-        break;
-      }
-      if (h <= kStagnantStepRatio * t) {
-        const bool nonfinite = evaluator.last_failure() == EvaluationFailure::NonFinite;
-        finish(nonfinite ? DynamicsStatus::NonFinite : DynamicsStatus::IntegratorFailed,
-               "step size " + scientific(h) + " stagnant at t = " + scientific(t) +
-                   (evaluator.last_message().empty() ? "" : ": " + evaluator.last_message()));
-        break;
-      }
-      // The end game: the motion has died out as far as IDA resolves it
-      // and its steps have grown to many time constants. Implicit Euler
-      // with an infinite step is a Newton step, so the remaining steps are
-      // taken at that limit (Newton with the energy line search), once the
-      // Hessian is positive definite (a stable basin, not a saddle). The
-      // check factorizes with the estimator's solver: IDA goes on with its
-      // factorization of K when the Hessian is indefinite.
-      if (options.endgame_steps > 0.0 && h * system.damping().rate >= options.endgame_steps &&
-          is_positive_definite(estimator, objective.hessian())) {
-        last_good = y;
-        endgame = true;
-        break;
-      }
-      last_good = y;
-      last_good_t = t;
-      last_total = total;
-      const double energy_scale =
-          std::max(std::abs(energy0 - report.energy), std::abs(report.energy));
-      if (report.gradient_measure <= options.gradient_tolerance &&
-          report.kinetic_energy <= options.kinetic_tolerance * energy_scale) {
-        finish(DynamicsStatus::Converged, "gradient and kinetic energy below tolerance");
-        break;
-      }
-      const bool blending = system.update_blend(t);
-      if (!blending && options.refresh_distance > 0.0 &&
-          options.damping_model == DampingModel::Rayleigh &&
-          (y.head(n) - refreshed_at).cwiseQuotient(scales).cwiseAbs().maxCoeff() >
-              options.refresh_distance) {
-        // Stiffness-proportional damping from the Hessian here, blended in.
-        refreshed_at = y.head(n);
-        system.blend_damping(refreshed_damping(), t, options.blend_steps * h);
-        ++result.refreshes;
-      }
-      const bool far = options.rebase_distance > 0.0 &&
-                       ((y.head(n) - rebased_at).cwiseQuotient(scales).cwiseAbs().maxCoeff() >
-                        options.rebase_distance);
-      const bool due = options.rebase_interval > 0 &&
-                       result.steps - last_rebase >= options.rebase_interval;
-      if (far || due) {
-        last_rebase = result.steps;
-        Eigen::VectorXd v = second_order ? Eigen::VectorXd(y.tail(n)) : Eigen::VectorXd();
-        objective.rebase(second_order ? &v : nullptr);
-        evaluator.sync();
-        ++result.rebases;
-        const Eigen::VectorXd before = y;
-        y.head(n) = objective.get();
-        if (second_order) y.tail(n) = v;
-        rebased_at = y.head(n);
-        refreshed_at = y.head(n);
-        weights = objective.gradient_weights();
-        last_good = y;
-        last_total = report.energy + kinetic(y);  // v re-expressed
-        bool restart = !(y == before);
-        if (options.refresh_damping > 0 && options.damping_model == DampingModel::Rayleigh) {
-          system.set_damping(refreshed_damping());
-          restart = true;
-        } else if (options.refresh_damping > 0 && choice.unstable) {
-          choice = choose_damping(options, estimator, objective.hessian(), mass);
-          system.set_damping(choice.damping);
-          restart = true;
         }
-        if (!restart) continue;  // nothing was re-expressed: no restart needed
-        restart_at(t, options.restart_step > 0 ? h * options.restart_step : 0.0);
+        if (result.steps >= options.max_steps) {
+          finish(DynamicsStatus::MaxSteps,
+                 "no convergence in " + std::to_string(result.steps) + " steps");
+          break;
+        }
+        evaluator.clear_failures();
+        const int flag = IDASolve(integrator.ida.get(), t + 1e10 * time_scale, &t,
+                                  integrator.y.get(), integrator.yp.get(), IDA_ONE_STEP);
+        if (evaluator.has_fatal()) {  // an unexpected exception in a callback
+          try {
+            objective.set(last_good.head(n));
+          } catch (...) {
+          }
+          evaluator.rethrow_if_fatal();
+        }
+        if (flag < 0) {
+          classify_failure(flag, evaluator, system, integrator.last_message, result);
+          y = last_good;
+          // IDA gave up late in a run whose motion had died out (error tests
+          // at the round-off floor of the residual): the end game can still
+          // finish it from the last accepted state if that is a stable basin.
+          if (endgame_threshold > 0.0 && t * system.damping().rate >= endgame_threshold &&
+              kinetic(y) <=
+                  1e-6 * std::max(std::abs(energy0 - report.energy), std::abs(report.energy))) {
+            evaluator.move_to(y.head(n));
+            endgame = is_positive_definite(estimator, objective.hessian());
+          }
+          break;
+        }
+        // Lift the step cap once steps under it kept K positive definite.
+        if (step_cap.on_step())
+          check_sundials(IDASetMaxStep(integrator.ida.get(), 0.0), "IDASetMaxStep");
+        double h = 0.0;
+        IDAGetLastStep(integrator.ida.get(), &h);
+        y = as_eigen(integrator.y.get());
+        // IDA's last Newton correction lands on a y it never evaluated. When
+        // that y is invalid (a rod's terminal edge through its joint, say),
+        // the step is taken again, shorter, as a rejected step.
+        if (evaluator.move_to(y.data()) != 0) {
+          evaluator.rethrow_if_fatal();
+          if (!retry_shorter(
+                  h, "the objective rejects the accepted state (" + evaluator.last_message() + ")"))
+            break;
+          continue;
+        }
+        ++result.steps;
+        IDAGetLastOrder(integrator.ida.get(), &report.order);
+        report.step = result.steps;
+        report.time = t;
+        report.step_size = h;
+        report.energy = objective.energy();
+        report.kinetic_energy = kinetic(y);
+        report.gradient_measure = weighted_max_norm(weights, evaluator.gradient());
+        const double total = report.energy + report.kinetic_energy;
+        if (options.dissipation_guard > 0.0 && std::isfinite(total) &&
+            total - last_total > options.dissipation_guard * std::max(total0 - last_total, 0.0) +
+                                     1e-12 * std::abs(report.energy)) {
+          // E + K rose: the step is taken again (see DynamicsOptions).
+          --result.steps;
+          if (!retry_shorter(h, "E + K rises")) break;
+          continue;
+        }
+        if (callbacks.on_step) callbacks.on_step(report);
+        if (!std::isfinite(report.energy) || !std::isfinite(report.gradient_measure) ||
+            !y.allFinite()) {
+          finish(DynamicsStatus::NonFinite,
+                 "non-finite state after step " + std::to_string(result.steps));
+          y = last_good;
+          break;
+        }
+        if (h <= kStagnantStepRatio * t) {
+          const bool nonfinite = evaluator.last_failure() == EvaluationFailure::NonFinite;
+          finish(nonfinite ? DynamicsStatus::NonFinite : DynamicsStatus::IntegratorFailed,
+                 "step size " + scientific(h) + " stagnant at t = " + scientific(t) +
+                     (evaluator.last_message().empty() ? "" : ": " + evaluator.last_message()));
+          break;
+        }
+        // The end game: the motion has died out as far as IDA resolves it
+        // and its steps have grown to many time constants. Implicit Euler
+        // with an infinite step is a Newton step, so the remaining steps are
+        // taken at that limit (Newton with the energy line search), once the
+        // Hessian is positive definite (a stable basin, not a saddle). The
+        // check factorizes with the estimator's solver: IDA goes on with its
+        // factorization of K when the Hessian is indefinite.
+        if (endgame_threshold > 0.0 && h * system.damping().rate >= endgame_threshold &&
+            is_positive_definite(estimator, objective.hessian())) {
+          last_good = y;
+          endgame = true;
+          break;
+        }
+        last_good = y;
+        last_good_t = t;
+        last_total = total;
+        const double energy_scale =
+            std::max(std::abs(energy0 - report.energy), std::abs(report.energy));
+        if (report.gradient_measure <= options.gradient_tolerance &&
+            report.kinetic_energy <= options.kinetic_tolerance * energy_scale) {
+          finish(DynamicsStatus::Converged, "gradient and kinetic energy below tolerance");
+          break;
+        }
+        const bool blending = system.update_blend(t);
+        if (!blending && options.refresh_distance > 0.0 &&
+            options.damping_model == DampingModel::Rayleigh &&
+            (y.head(n) - refreshed_at).cwiseQuotient(scales).cwiseAbs().maxCoeff() >
+                options.refresh_distance) {
+          // Stiffness-proportional damping from the Hessian here, blended in.
+          refreshed_at = y.head(n);
+          system.blend_damping(refreshed_damping(), t, options.blend_steps * h);
+          ++result.refreshes;
+        }
+        const bool far = options.rebase_distance > 0.0 &&
+                         ((y.head(n) - rebased_at).cwiseQuotient(scales).cwiseAbs().maxCoeff() >
+                          options.rebase_distance);
+        const bool due =
+            options.rebase_interval > 0 && result.steps - last_rebase >= options.rebase_interval;
+        if (far || due) {
+          last_rebase = result.steps;
+          Eigen::VectorXd v = second_order ? Eigen::VectorXd(y.tail(n)) : Eigen::VectorXd();
+          objective.rebase(second_order ? &v : nullptr);
+          evaluator.sync();
+          ++result.rebases;
+          const Eigen::VectorXd before = y;
+          y.head(n) = objective.get();
+          if (second_order) y.tail(n) = v;
+          rebased_at = y.head(n);
+          refreshed_at = y.head(n);
+          weights = objective.gradient_weights();
+          last_good = y;
+          last_total = report.energy + kinetic(y);  // v re-expressed
+          bool restart = !(y == before);
+          if (options.refresh_damping > 0 && options.damping_model == DampingModel::Rayleigh) {
+            system.set_damping(refreshed_damping());
+            restart = true;
+          } else if (options.refresh_damping > 0 && choice.unstable) {
+            choice = choose_damping(options, estimator, objective.hessian(), mass);
+            system.set_damping(choice.damping);
+            restart = true;
+          }
+          if (!restart) continue;  // nothing was re-expressed: no restart needed
+          restart_at(t, options.restart_step > 0 ? h * options.restart_step : 0.0);
+        }
       }
+      // Leave the objective at the last accepted state.
+      evaluator.move_to(y.head(n));
+      if (!endgame) break;
+      {
+        NewtonOptions newton;
+        newton.gradient_tolerance = options.gradient_tolerance;
+        newton.max_iterations = static_cast<int>(std::min<long>(
+            options.endgame_iterations, std::max<long>(1, options.max_steps - result.steps)));
+        newton.shift = options.shift;
+        NewtonCallbacks forward;
+        forward.stop = callbacks.stop;
+        const long steps_before = result.steps;
+        forward.on_iteration = [&](const NewtonReport& r) {
+          if (r.iteration == 0) return;  // the state IDA ended in, reported already
+          report.step = steps_before + r.iteration;
+          report.order = 0;
+          report.energy = r.energy;
+          report.kinetic_energy = 0.0;
+          report.gradient_measure = r.gradient_measure;
+          if (callbacks.on_step) callbacks.on_step(report);
+        };
+        if (second_order) y.tail(n).setZero();  // the infinite step ends at rest
+        const NewtonResult polished = solve_newton(objective, newton, forward);
+        result.steps += polished.iterations;
+        result.endgame_steps += polished.iterations;
+        extra_factorizations += polished.factorizations;
+        evaluator.sync();
+        y.head(n) = objective.get();
+        weights = objective.gradient_weights();
+        const bool resume = polished.status == NewtonStatus::MaxIterations &&
+                            result.steps < options.max_steps && options.endgame_growth > 1.0;
+        if (resume) {
+          // Handed over too early (far from the equilibrium, in a region
+          // where H happens to be positive definite): the dynamics go on at
+          // rest from where the end game stopped, its energy lower than at
+          // the hand-over (the line search only lowers it).
+          ++result.endgame_fallbacks;
+          endgame = false;
+          endgame_threshold *= options.endgame_growth;
+          report.energy = objective.energy();
+          last_good = y;
+          last_good_t = t;
+          last_total = report.energy;
+          rebased_at = y.head(n);
+          refreshed_at = y.head(n);
+          restart_at(t, 0.0);
+          continue;
+        }
+        switch (polished.status) {
+          case NewtonStatus::Converged:
+            finish(DynamicsStatus::Converged, "gradient below tolerance, at rest (end game: " +
+                                                  std::to_string(polished.iterations) +
+                                                  " steps of infinite length)");
+            break;
+          case NewtonStatus::Interrupted:
+            finish(DynamicsStatus::Interrupted, "stop flag raised");
+            break;
+          case NewtonStatus::NonFinite:
+            finish(DynamicsStatus::NonFinite, "end game: " + polished.reason);
+            break;
+          default:
+            finish(DynamicsStatus::IntegratorFailed, "end game: " + polished.reason);
+            break;
+        }
+      }
+      break;
     }
     accumulate_stats();
     system.on_indefinite(nullptr);
-    // Leave the objective at the last accepted state.
-    evaluator.move_to(y.head(n));
-    if (endgame) {
-      NewtonOptions newton;
-      newton.gradient_tolerance = options.gradient_tolerance;
-      newton.max_iterations = static_cast<int>(std::min<long>(100, std::max<long>(1, options.max_steps - result.steps)));
-      newton.shift = options.shift;
-      NewtonCallbacks forward;
-      forward.stop = callbacks.stop;
-      const long steps_before = result.steps;
-      forward.on_iteration = [&](const NewtonReport& r) {
-        if (r.iteration == 0) return;  // the state IDA ended in, reported already
-        report.step = steps_before + r.iteration;
-        report.order = 0;
-        report.energy = r.energy;
-        report.kinetic_energy = 0.0;
-        report.gradient_measure = r.gradient_measure;
-        if (callbacks.on_step) callbacks.on_step(report);
-      };
-      if (second_order) y.tail(n).setZero();  // the infinite step ends at rest
-      const NewtonResult polished = solve_newton(objective, newton, forward);
-      result.steps += polished.iterations;
-      result.endgame_steps = polished.iterations;
-      extra_factorizations += polished.factorizations;
-      evaluator.sync();
-      y.head(n) = objective.get();
-      weights = objective.gradient_weights();
-      switch (polished.status) {
-        case NewtonStatus::Converged:
-          finish(DynamicsStatus::Converged, "gradient below tolerance, at rest (end game: " +
-                                                std::to_string(polished.iterations) + " steps of infinite length)");
-          break;
-        case NewtonStatus::Interrupted:
-          finish(DynamicsStatus::Interrupted, "stop flag raised");
-          break;
-        case NewtonStatus::NonFinite:
-          finish(DynamicsStatus::NonFinite, "end game: " + polished.reason);
-          break;
-        default:
-          finish(DynamicsStatus::IntegratorFailed, "end game: " + polished.reason);
-          break;
-      }
-    }
   }
 
   result.time = report.time;

@@ -139,6 +139,13 @@ struct DynamicsOptions {
   // is a Newton step, globalized by the energy line search (newton.hpp),
   // which only lowers the energy. 0: never (IDA to the end).
   double endgame_steps = 1e3;
+  // The end game's Newton iterations. An end game that does not converge
+  // within them was handed over too far from the equilibrium (where H
+  // happens to be positive definite): the dynamics resume at rest
+  // from its last state, and the next end game waits for steps
+  // endgame_growth times longer (1: no resumption, the run fails).
+  int endgame_iterations = 30;
+  double endgame_growth = 4.0;
   // Velocities excluded from IDA's error test (IDASetId, IDASetSuppressAlg):
   // statics needs the path of q, not an accurate v. With velocities in the
   // test, their absolute tolerance (that of q times the slowest rate) holds
@@ -200,7 +207,8 @@ struct DynamicsOptions {
 enum class DynamicsStatus {
   Converged,  // gradient and kinetic criteria met
   MaxSteps,
-  LinearSolverFailed,  // K could not be factorized, or gave no finite correction, even for short steps
+  LinearSolverFailed,  // K could not be factorized, or gave no finite correction, even for short
+                       // steps
   IntegratorFailed,    // other IDA failures (error test, convergence, steps stagnating
                        // below 1e-12 t), or invalid configurations
   NonFinite,           // NaN/inf in the energy, gradient or Hessian
@@ -233,16 +241,17 @@ struct DynamicsResult {
   double gradient_measure = 0.0;
   double energy = 0.0;
   double kinetic_energy = 0.0;
-  bool stable = false;      // unshifted LL^T of the final Hessian succeeded
-  double damping = 0.0;     // c (or a) used
+  bool stable = false;             // unshifted LL^T of the final Hessian succeeded
+  double damping = 0.0;            // c (or a) used
   double stiffness_damping = 0.0;  // b used (0 for mass-proportional damping)
   long residual_evaluations = 0;
   long error_test_failures = 0;
   long convergence_failures = 0;
   long factorizations = 0;  // numeric Cholesky factorizations (incl. estimate and check)
   long rebases = 0;
-  long refreshes = 0;      // damping refreshes
-  long endgame_steps = 0;  // steps of infinite length (Newton) at the end
+  long refreshes = 0;          // damping refreshes
+  long endgame_steps = 0;      // steps of infinite length (Newton) at the end
+  long endgame_fallbacks = 0;  // end games that did not converge, after which the dynamics resumed
   long rejected_steps = 0;  // steps retried shorter: by dissipation_guard, or ending in an invalid
                             // configuration (not counted in steps)
   double seconds = 0.0;

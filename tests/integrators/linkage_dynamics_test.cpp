@@ -327,6 +327,53 @@ TEST_CASE("Started on the slow manifold, the second-order form skips the initial
   CHECK(steps[1] <= 0.9 * steps[0]);
 }
 
+TEST_CASE("An end game handed over too early gives way to the dynamics again") {
+  // The saddle sample with an end game entered after steps of 1e-3 time
+  // constants and allowed 2 Newton iterations: the first ones cannot
+  // converge (the sample needs 9 Newton iterations from flat), and the
+  // dynamics resume at rest from where they stopped.
+  const std::filesystem::path samples = XSHELL_SAMPLES_DIR;
+  const Config config = read_config((samples / "grid_gravity.json").string());
+  const ProblemSetup setup = make_problem_setup(config, read_obj((samples / "saddle.obj").string()));
+  LinkageProblem reference(RodLinkage(setup.graph, setup.options), setup.statics);
+  LinkageObjective reference_objective(reference);
+  NewtonOptions newton;
+  newton.gradient_tolerance = 1e-8;
+  const NewtonResult n = solve_newton(reference_objective, newton);
+  REQUIRE(n.converged());
+  for (double growth : {4.0, 1.0}) {
+    CAPTURE(growth);
+    LinkageProblem problem(RodLinkage(setup.graph, setup.options), setup.statics);
+    LinkageObjective objective(problem);
+    DynamicsOptions o = dynamics_options();
+    o.endgame_steps = 1e-3;
+    o.endgame_iterations = 2;
+    o.endgame_growth = growth;
+    std::vector<DynamicsReport> reports;
+    DynamicsCallbacks callbacks;
+    callbacks.on_step = [&](const DynamicsReport& r) { reports.push_back(r); };
+    const DynamicsResult d = solve_dynamics(objective, o, callbacks);
+    CAPTURE(d.reason);
+    if (growth == 1.0) {  // no resumption: the first end game's failure ends the run
+      CHECK(d.status == DynamicsStatus::IntegratorFailed);
+      CHECK(d.endgame_fallbacks == 0);
+      CHECK(d.endgame_steps == 2);
+      continue;
+    }
+    REQUIRE(d.converged());
+    CHECK(d.stable);
+    CHECK(d.endgame_fallbacks >= 1);
+    CHECK(std::abs(d.energy - n.energy) <= 1e-7 * std::abs(n.energy));
+    // E + K never rises, across the hand-overs and resumptions too.
+    const double drop = reports.front().energy + reports.front().kinetic_energy - reports.back().energy;
+    double worst_rise = 0.0;
+    for (size_t k = 1; k < reports.size(); ++k)
+      worst_rise = std::max(worst_rise, reports[k].energy + reports[k].kinetic_energy -
+                                            reports[k - 1].energy - reports[k - 1].kinetic_energy);
+    CHECK(worst_rise <= 1e-6 * drop);
+  }
+}
+
 TEST_CASE("Damped dynamics against Newton: wall time on linkages" * doctest::test_suite("validation")) {
   const ProblemList problems = timing_problems();
   if (!std::filesystem::is_directory(XSHELL_SHARED_DATA_DIR))
