@@ -11,6 +11,7 @@
 
 #include "damping_choice.hpp"
 #include "definite_step_cap.hpp"
+#include "dynamics_endgame.hpp"
 #include "mass_and_damping.hpp"
 #include "newton.hpp"
 #include "objective_evaluator.hpp"
@@ -527,68 +528,35 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       // Leave the objective at the last accepted state.
       evaluator.move_to(y.head(n));
       if (!endgame) break;
-      {
-        NewtonOptions newton;
-        newton.gradient_tolerance = options.gradient_tolerance;
-        newton.max_iterations = static_cast<int>(std::min<long>(
-            options.endgame_iterations, std::max<long>(1, options.max_steps - result.steps)));
-        newton.shift = options.shift;
-        NewtonCallbacks forward;
-        forward.stop = callbacks.stop;
-        const long steps_before = result.steps;
-        forward.on_iteration = [&](const NewtonReport& r) {
-          if (r.iteration == 0) return;  // the state IDA ended in, reported already
-          report.step = steps_before + r.iteration;
-          report.order = 0;
-          report.energy = r.energy;
-          report.kinetic_energy = 0.0;
-          report.gradient_measure = r.gradient_measure;
-          if (callbacks.on_step) callbacks.on_step(report);
-        };
-        if (second_order) y.tail(n).setZero();  // the infinite step ends at rest
-        const NewtonResult polished = solve_newton(objective, newton, forward);
-        result.steps += polished.iterations;
-        result.endgame_steps += polished.iterations;
-        extra_factorizations += polished.factorizations;
-        evaluator.sync();
-        y.head(n) = objective.get();
-        weights = objective.gradient_weights();
-        const bool resume = polished.status == NewtonStatus::MaxIterations &&
-                            result.steps < options.max_steps && options.endgame_growth > 1.0;
-        if (resume) {
-          // Handed over too early (far from the equilibrium, in a region
-          // where H happens to be positive definite): the dynamics go on at
-          // rest from where the end game stopped, its energy lower than at
-          // the hand-over (the line search only lowers it).
-          ++result.endgame_fallbacks;
-          endgame = false;
-          endgame_threshold *= options.endgame_growth;
-          report.energy = objective.energy();
-          last_good = y;
-          last_good_t = t;
-          last_total = report.energy;
-          rebased_at = y.head(n);
-          refreshed_at = y.head(n);
-          restart_at(t, 0.0);
-          continue;
-        }
-        switch (polished.status) {
-          case NewtonStatus::Converged:
-            finish(DynamicsStatus::Converged, "gradient below tolerance, at rest (end game: " +
-                                                  std::to_string(polished.iterations) +
-                                                  " steps of infinite length)");
-            break;
-          case NewtonStatus::Interrupted:
-            finish(DynamicsStatus::Interrupted, "stop flag raised");
-            break;
-          case NewtonStatus::NonFinite:
-            finish(DynamicsStatus::NonFinite, "end game: " + polished.reason);
-            break;
-          default:
-            finish(DynamicsStatus::IntegratorFailed, "end game: " + polished.reason);
-            break;
-        }
+      const int max_iterations = static_cast<int>(std::min<long>(
+          options.endgame_iterations, std::max<long>(1, options.max_steps - result.steps)));
+      if (second_order) y.tail(n).setZero();  // the infinite step ends at rest
+      const NewtonResult polished =
+          run_endgame(objective, options, max_iterations, callbacks, result.steps, report);
+      result.steps += polished.iterations;
+      result.endgame_steps += polished.iterations;
+      extra_factorizations += polished.factorizations;
+      evaluator.sync();
+      y.head(n) = objective.get();
+      weights = objective.gradient_weights();
+      if (polished.status == NewtonStatus::MaxIterations && result.steps < options.max_steps &&
+          options.endgame_growth > 1.0) {
+        // Handed over too early (far from the equilibrium, in a region
+        // where H happens to be positive definite): the dynamics go on at
+        // rest from where the end game stopped, its energy lower than at
+        // the hand-over (the line search only lowers it).
+        ++result.endgame_fallbacks;
+        endgame = false;
+        endgame_threshold *= options.endgame_growth;
+        last_good = y;
+        last_good_t = t;
+        last_total = polished.energy;
+        rebased_at = y.head(n);
+        refreshed_at = y.head(n);
+        restart_at(t, 0.0);
+        continue;
       }
+      finish(endgame_status(polished), endgame_reason(polished));
       break;
     }
     accumulate_stats();
