@@ -243,6 +243,37 @@ std::string format_row(const TimingRow& row) {
   return head + cell(row.newton, false) + cell(row.second, true) + cell(row.first, true);
 }
 
+// The saddle sample with the material, supports and loads of grid_gravity.json.
+ProblemSetup saddle_sample() {
+  const std::filesystem::path samples = XSHELL_SAMPLES_DIR;
+  const Config config = read_config((samples / "grid_gravity.json").string());
+  return make_problem_setup(config, read_obj((samples / "saddle.obj").string()));
+}
+
+struct RecordedRun {
+  DynamicsResult result;
+  std::vector<DynamicsReport> reports;  // step 0 first
+};
+
+RecordedRun run_recorded(const ProblemSetup& setup, const DynamicsOptions& options) {
+  LinkageProblem problem(RodLinkage(setup.graph, setup.options), setup.statics);
+  LinkageObjective objective(problem);
+  RecordedRun run;
+  DynamicsCallbacks callbacks;
+  callbacks.on_step = [&](const DynamicsReport& r) { run.reports.push_back(r); };
+  run.result = solve_dynamics(objective, options, callbacks);
+  return run;
+}
+
+// The largest rise of E + K from one report to the next.
+double worst_total_rise(const std::vector<DynamicsReport>& reports) {
+  double worst = 0.0;
+  for (size_t k = 1; k < reports.size(); ++k)
+    worst = std::max(worst, reports[k].energy + reports[k].kinetic_energy - reports[k - 1].energy -
+                                reports[k - 1].kinetic_energy);
+  return worst;
+}
+
 using ProblemList = std::vector<std::pair<std::string, std::function<LinkageProblem()>>>;
 
 // The linkages of this file, the bundled samples and, when present, two real graphs.
@@ -286,22 +317,17 @@ TEST_CASE("Started on the slow manifold, the second-order form skips the initial
   // The saddle sample: from rest, the first steps accelerate the linkage
   // from v = 0 to the overdamped motion (about 80 of 200 steps when the
   // velocities were in IDA's error test; fewer without them, the default).
-  const std::filesystem::path samples = XSHELL_SAMPLES_DIR;
-  const Config config = read_config((samples / "grid_gravity.json").string());
-  const ProblemSetup setup = make_problem_setup(config, read_obj((samples / "saddle.obj").string()));
+  const ProblemSetup setup = saddle_sample();
   long steps[2] = {0, 0};
   double energy[2] = {0.0, 0.0};
   for (DynamicsStart start : {DynamicsStart::Rest, DynamicsStart::SlowManifold}) {
     const bool slow = start == DynamicsStart::SlowManifold;
     CAPTURE(slow);
-    LinkageProblem problem(RodLinkage(setup.graph, setup.options), setup.statics);
-    LinkageObjective objective(problem);
     DynamicsOptions o = dynamics_options();
     o.start = start;
-    std::vector<DynamicsReport> reports;
-    DynamicsCallbacks callbacks;
-    callbacks.on_step = [&](const DynamicsReport& r) { reports.push_back(r); };
-    const DynamicsResult d = solve_dynamics(objective, o, callbacks);
+    const RecordedRun run = run_recorded(setup, o);
+    const DynamicsResult& d = run.result;
+    const std::vector<DynamicsReport>& reports = run.reports;
     CAPTURE(d.reason);
     REQUIRE(d.converged());
     CHECK(d.stable);
@@ -311,11 +337,7 @@ TEST_CASE("Started on the slow manifold, the second-order form skips the initial
     // E + K starts at E_0 + K_0 and never rises.
     const double drop = reports.front().energy + reports.front().kinetic_energy - reports.back().energy;
     CHECK(drop > 0.0);
-    double worst_rise = 0.0;
-    for (size_t k = 1; k < reports.size(); ++k)
-      worst_rise = std::max(worst_rise, reports[k].energy + reports[k].kinetic_energy -
-                                            reports[k - 1].energy - reports[k - 1].kinetic_energy);
-    CHECK(worst_rise <= 1e-6 * drop);
+    CHECK(worst_total_rise(reports) <= 1e-6 * drop);
   }
   MESSAGE("saddle sample, second order: " << steps[0] << " steps from rest, " << steps[1]
                                           << " from the slow manifold");
@@ -332,9 +354,7 @@ TEST_CASE("An end game handed over too early gives way to the dynamics again") {
   // constants and allowed 2 Newton iterations: the first ones cannot
   // converge (the sample needs 9 Newton iterations from flat), and the
   // dynamics resume at rest from where they stopped.
-  const std::filesystem::path samples = XSHELL_SAMPLES_DIR;
-  const Config config = read_config((samples / "grid_gravity.json").string());
-  const ProblemSetup setup = make_problem_setup(config, read_obj((samples / "saddle.obj").string()));
+  const ProblemSetup setup = saddle_sample();
   LinkageProblem reference(RodLinkage(setup.graph, setup.options), setup.statics);
   LinkageObjective reference_objective(reference);
   NewtonOptions newton;
@@ -343,16 +363,12 @@ TEST_CASE("An end game handed over too early gives way to the dynamics again") {
   REQUIRE(n.converged());
   for (double growth : {4.0, 1.0}) {
     CAPTURE(growth);
-    LinkageProblem problem(RodLinkage(setup.graph, setup.options), setup.statics);
-    LinkageObjective objective(problem);
     DynamicsOptions o = dynamics_options();
     o.endgame_steps = 1e-3;
     o.endgame_iterations = 2;
     o.endgame_growth = growth;
-    std::vector<DynamicsReport> reports;
-    DynamicsCallbacks callbacks;
-    callbacks.on_step = [&](const DynamicsReport& r) { reports.push_back(r); };
-    const DynamicsResult d = solve_dynamics(objective, o, callbacks);
+    const RecordedRun run = run_recorded(setup, o);
+    const DynamicsResult& d = run.result;
     CAPTURE(d.reason);
     if (growth == 1.0) {  // no resumption: the first end game's failure ends the run
       CHECK(d.status == DynamicsStatus::IntegratorFailed);
@@ -365,12 +381,9 @@ TEST_CASE("An end game handed over too early gives way to the dynamics again") {
     CHECK(d.endgame_fallbacks >= 1);
     CHECK(std::abs(d.energy - n.energy) <= 1e-7 * std::abs(n.energy));
     // E + K never rises, across the hand-overs and resumptions too.
-    const double drop = reports.front().energy + reports.front().kinetic_energy - reports.back().energy;
-    double worst_rise = 0.0;
-    for (size_t k = 1; k < reports.size(); ++k)
-      worst_rise = std::max(worst_rise, reports[k].energy + reports[k].kinetic_energy -
-                                            reports[k - 1].energy - reports[k - 1].kinetic_energy);
-    CHECK(worst_rise <= 1e-6 * drop);
+    const double drop =
+        run.reports.front().energy + run.reports.front().kinetic_energy - run.reports.back().energy;
+    CHECK(worst_total_rise(run.reports) <= 1e-6 * drop);
   }
 }
 
