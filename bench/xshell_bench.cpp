@@ -382,12 +382,6 @@ double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) 
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-// The bundled sample's configuration (grid_gravity.json): material,
-// supports, loads and subdivisions.
-Config samples_config() {
-  return read_config((fs::path(XSHELL_SOURCE_DIR) / "samples" / "grid_gravity.json").string());
-}
-
 std::vector<int> parse_ints(const std::string& text) {
   std::vector<int> out;
   std::stringstream in(text);
@@ -439,6 +433,10 @@ int main(int argc, char** argv) {
   }
 
   std::vector<BenchCase> cases;
+  // The bundled sample's configuration: material, supports, loads and
+  // subdivisions of the samples and of the small shared graphs.
+  const Config sample_config =
+      read_config((fs::path(XSHELL_SOURCE_DIR) / "samples" / "grid_gravity.json").string());
   const std::vector<std::string> designs = {"manta_ray", "darth_vader", "scary_face", "hourglass", "large"};
   if (graphs != "none") {
     std::vector<std::string> wanted;
@@ -475,7 +473,7 @@ int main(int argc, char** argv) {
             // The small graphs are of order 1, not millimetres: the samples'
             // laths (metres), their input shape as rest shape, gravity and
             // the four corners pinned, as the validation runs use them.
-            Config config = samples_config();
+            Config config = sample_config;
             config.subdivisions = n;
             config.rest_shape = RestShape::Input;
             config.supports.clear();
@@ -491,7 +489,7 @@ int main(int argc, char** argv) {
   if (samples == "all") {
     // Each sample with the material, supports and loads of grid_gravity.json.
     const fs::path folder = fs::path(XSHELL_SOURCE_DIR) / "samples";
-    const Config config = samples_config();
+    const Config& config = sample_config;
     std::vector<fs::path> files;
     for (const auto& entry : fs::directory_iterator(folder))
       if (entry.path().extension() == ".obj") files.push_back(entry.path());
