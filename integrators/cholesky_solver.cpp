@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cholmod_handles.hpp"
+#include "cholmod_threads.hpp"
 
 namespace xshell {
 
@@ -71,7 +72,11 @@ void CholeskySolver::Impl::analyze(const Eigen::SparseMatrix<double>& A) {
 
   cholmod_sparse view = sparse_view(upper, SymmetricStorage::Upper);
   factor.reset();
-  cholmod_factor* L = cholmod_analyze(&view, common->get());
+  cholmod_factor* L = nullptr;
+  {
+    const CholmodThreads threads;
+    L = cholmod_analyze(&view, common->get());
+  }
   if (L == nullptr) throw std::runtime_error("cholmod_analyze failed");
   factor = CholmodFactor(L, *common);
   ready = false;
@@ -112,7 +117,11 @@ FactorizationStatus CholeskySolver::factorize(const Eigen::SparseMatrix<double>&
   cholmod_sparse view = sparse_view(s.upper, SymmetricStorage::Upper);
   cholmod_common* c = s.common->get();
   ++s.stats.factorizations;
-  const int ok = cholmod_factorize(&view, s.factor.get(), c);
+  int ok = 0;
+  {
+    const CholmodThreads threads;
+    ok = cholmod_factorize(&view, s.factor.get(), c);
+  }
   if (c->status == CHOLMOD_NOT_POSDEF || s.factor.get()->minor < s.factor.get()->n) {
     ++s.stats.failed_factorizations;
     return FactorizationStatus::NotPositiveDefinite;
@@ -130,6 +139,7 @@ void CholeskySolver::solve(const double* b, double* x) {
   const Eigen::Index n = s.upper.cols();
   Eigen::VectorXd rhs = Eigen::Map<const Eigen::VectorXd>(b, n);
   cholmod_dense B = dense_view(rhs);
+  const CholmodThreads threads;
   if (!cholmod_solve2(CHOLMOD_A, s.factor.get(), &B, nullptr, s.x.handle(), nullptr, s.y.handle(),
                       s.e.handle(), s.common->get()))
     throw std::runtime_error("cholmod_solve2 failed");
