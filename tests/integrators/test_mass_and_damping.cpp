@@ -109,4 +109,19 @@ TEST_CASE("mode estimate: unstable and lowest stable modes, each iteration stopp
   REQUIRE(modes.stable.ok);
   CHECK(modes.stable.eigenvalue == doctest::Approx(2.0).epsilon(1e-4));
   CHECK(modes.certified_shift > 6.0);
+
+  // Unstable modes close together (relative to the shift), as the zero
+  // modes of a linkage without supports: the ones after the lowest are
+  // known to be unstable after a few solves each, and their exact values
+  // are not needed; the lowest and the lowest stable one still are.
+  const Eigen::SparseMatrix<double> cluster = diagonal({50.0, -2.0, 60.0, 1.0, -3.0, -1.8, -1.6, 90.0});
+  CholeskySolver counted;
+  const ModeEstimate clustered = estimate_modes(counted, cluster, mass, 40);
+  REQUIRE(clustered.lowest.ok);
+  CHECK(clustered.unstable_modes == 4);
+  CHECK(clustered.lowest.eigenvalue == doctest::Approx(-6.0).epsilon(1e-4));
+  REQUIRE(clustered.stable.ok);
+  CHECK(clustered.stable.eigenvalue == doctest::Approx(2.0).epsilon(1e-4));
+  const long others = counted.stats().solves - clustered.lowest.iterations - clustered.stable.iterations;
+  CHECK(others <= 3 * 7);  // each to convergence: 97
 }
