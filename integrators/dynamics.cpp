@@ -478,9 +478,15 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         last_total = total;
         const double energy_scale =
             std::max(std::abs(energy0 - report.energy), std::abs(report.energy));
-        if (report.gradient_measure <= options.gradient_tolerance &&
-            report.kinetic_energy <= options.kinetic_tolerance * energy_scale) {
+        const bool at_rest = report.kinetic_energy <= options.kinetic_tolerance * energy_scale;
+        if (report.gradient_measure <= options.gradient_tolerance && at_rest) {
           finish(DynamicsStatus::Converged, "gradient and kinetic energy below tolerance");
+          break;
+        }
+        // Settled near an equilibrium (see endgame_gradient_factor).
+        if (endgame_threshold > 0.0 && options.endgame_gradient_factor > 0.0 && at_rest &&
+            report.gradient_measure <= options.endgame_gradient_factor * options.gradient_tolerance) {
+          endgame = true;
           break;
         }
         const bool blending = system.update_blend(t);

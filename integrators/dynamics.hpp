@@ -146,6 +146,17 @@ struct DynamicsOptions {
   // endgame_growth times longer (1: no resumption, the run fails).
   int endgame_iterations = 30;
   double endgame_growth = 4.0;
+  // The end game also begins, whatever the step length and the Hessian,
+  // once the run is at rest (kinetic energy within kinetic_tolerance) with
+  // the gradient measure within endgame_gradient_factor times the
+  // tolerance: the motion has settled at an equilibrium that the remaining
+  // steps only approach. An equilibrium with an (almost) zero or negative
+  // mode (the largest design from flat, which Newton too finds unstable)
+  // caps the steps, since K is positive definite only for short ones, and
+  // the gradient then fell by about 8% per step: 34 of its 65 steps went
+  // from 100 times the tolerance to the tolerance. Newton shifts the
+  // indefinite Hessian there (newton.hpp). 0: never.
+  double endgame_gradient_factor = 100.0;
   // Velocities excluded from IDA's error test (IDASetId, IDASetSuppressAlg):
   // statics needs the path of q, not an accurate v. With velocities in the
   // test, their absolute tolerance (that of q times the slowest rate) holds

@@ -223,6 +223,49 @@ StencilObjective make_taut_chain() {
   return make_chain(o);
 }
 
+TEST_CASE("a run settled at a saddle within endgame_gradient_factor of the tolerance ends with the end game") {
+  // The exactly straight column beyond Euler's load stays on its saddle
+  // (see above). Its Hessian is indefinite there, so the end game by step
+  // length never starts, and K is positive definite only for short steps:
+  // the gradient falls by a constant factor per capped step. Newton, from
+  // the same start, stops on the same saddle.
+  NewtonOptions newton;
+  newton.gradient_tolerance = 1e-10;
+  StencilObjective reference = make_column({});
+  const NewtonResult saddle = solve_newton(reference, newton);
+  REQUIRE(saddle.converged());
+  REQUIRE_FALSE(saddle.stable);
+  for (DynamicsForm form : {DynamicsForm::SecondOrder, DynamicsForm::FirstOrder}) {
+    DynamicsOptions o = tight(form, MassModel::Physical);
+    std::vector<DynamicsRun> runs;
+    for (double factor : {0.0, 100.0}) {
+      o.endgame_gradient_factor = factor;
+      StencilObjective column = make_column({});
+      runs.push_back(run_dynamics(column, o));
+      const DynamicsRun& run = runs.back();
+      INFO(label(o) << ", factor " << factor << ": " << run.result.reason);
+      REQUIRE(run.result.status == DynamicsStatus::Converged);
+      CHECK(run.result.gradient_measure <= o.gradient_tolerance);
+      CHECK_FALSE(run.result.stable);
+      CHECK((column.configuration() - reference.configuration()).norm() <=
+            1e-6 * reference.configuration().norm());
+    }
+    const DynamicsResult &plain = runs[0].result, &settled = runs[1].result;
+    CHECK(plain.endgame_steps == 0);
+    REQUIRE(settled.endgame_steps >= 1);
+    // The dynamics handed over at rest, within 100 times the tolerance.
+    const std::vector<DynamicsReport>& reports = runs[1].reports;
+    const DynamicsReport& handover =
+        reports[reports.size() - 1 - static_cast<size_t>(settled.endgame_steps)];
+    CHECK(handover.order > 0);
+    CHECK(handover.gradient_measure <= 100.0 * o.gradient_tolerance);
+    CHECK(handover.gradient_measure > o.gradient_tolerance);
+    CHECK(settled.steps < plain.steps);
+    MESSAGE(label(o) << ": " << plain.steps << " steps without the settled end game, "
+                     << settled.steps << " with it (" << settled.endgame_steps << " of them Newton)");
+  }
+}
+
 TEST_CASE("the overdamped velocity puts the second-order form on its slow manifold") {
   StencilObjective chain = make_taut_chain();
   ObjectiveEvaluator evaluator(chain);
