@@ -14,9 +14,9 @@
 // the call opens (CHOLMOD's and the BLAS's) run on the calling thread when
 // the program allows fewer threads than CHOLMOD's teams (the limit on
 // active levels 0, and the thread count 1 for the BLAS, which sizes its
-// teams by it); with enough threads it changes nothing. On 2 cores the BLAS gained nothing from a
-// second thread on these factorizations (largest design 110 ms on one
-// thread, 104 ms on two).
+// teams by it); with enough threads it changes nothing. On 2 cores the
+// BLAS gained nothing from a second thread on these factorizations
+// (largest design 110 ms on one thread, 104 ms on two).
 #pragma once
 
 namespace xshell {

@@ -371,8 +371,10 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
     // factorization fails, so that IDA's next step obeys it.
     DefiniteStepCap step_cap;
     // An end game that does not converge hands back to the dynamics, which
-    // then waits for steps endgame_growth times longer before the next.
-    double endgame_threshold = options.endgame_steps;
+    // then waits for steps endgame_growth times longer, or a gradient
+    // endgame_growth times smaller, before the next (both triggers back off).
+    double endgame_backoff = 1.0;
+    const bool endgame_on = options.endgame_steps > 0.0;
     if (options.cap_indefinite_steps)
       system.on_indefinite([&step_cap, &integrator](double cj) {
         IDASetMaxStep(integrator.ida.get(), step_cap.on_failure(cj));
@@ -404,7 +406,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
           // IDA gave up late in a run whose motion had died out (error tests
           // at the round-off floor of the residual): the end game can still
           // finish it from the last accepted state if that is a stable basin.
-          if (endgame_threshold > 0.0 && t * system.damping().rate >= endgame_threshold &&
+          if (endgame_on && t * system.damping().rate >= options.endgame_steps * endgame_backoff &&
               kinetic(y) <=
                   1e-6 * std::max(std::abs(energy0 - report.energy), std::abs(report.energy))) {
             evaluator.move_to(y.head(n));
@@ -467,7 +469,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         // Hessian is positive definite (a stable basin, not a saddle). The
         // check factorizes with the estimator's solver: IDA goes on with its
         // factorization of K when the Hessian is indefinite.
-        if (endgame_threshold > 0.0 && h * system.damping().rate >= endgame_threshold &&
+        if (endgame_on && h * system.damping().rate >= options.endgame_steps * endgame_backoff &&
             is_positive_definite(estimator, objective.hessian())) {
           last_good = y;
           endgame = true;
@@ -484,8 +486,9 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
           break;
         }
         // Settled near an equilibrium (see endgame_gradient_factor).
-        if (endgame_threshold > 0.0 && options.endgame_gradient_factor > 0.0 && at_rest &&
-            report.gradient_measure <= options.endgame_gradient_factor * options.gradient_tolerance) {
+        if (endgame_on && options.endgame_gradient_factor > 0.0 && at_rest &&
+            report.gradient_measure <=
+                options.endgame_gradient_factor / endgame_backoff * options.gradient_tolerance) {
           endgame = true;
           break;
         }
@@ -553,7 +556,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         // the hand-over (the line search only lowers it).
         ++result.endgame_fallbacks;
         endgame = false;
-        endgame_threshold *= options.endgame_growth;
+        endgame_backoff *= options.endgame_growth;
         last_good = y;
         last_good_t = t;
         last_total = polished.energy;

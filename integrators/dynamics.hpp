@@ -143,7 +143,8 @@ struct DynamicsOptions {
   // within them was handed over too far from the equilibrium (where H
   // happens to be positive definite): the dynamics resume at rest
   // from its last state, and the next end game waits for steps
-  // endgame_growth times longer (1: no resumption, the run fails).
+  // endgame_growth times longer, or a gradient endgame_growth times
+  // smaller (below; 1: no resumption, the run fails).
   int endgame_iterations = 30;
   double endgame_growth = 4.0;
   // The end game also begins, whatever the step length and the Hessian,
