@@ -6,10 +6,12 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
 # OpenMP threads wait passively: several test programs run at once.
+# Xvfb runs with -noreset: by default it resets when its last client leaves,
+# and a test connecting at that moment fails with "cannot open X display".
 export OMP_WAIT_POLICY=PASSIVE
 cd build
 if command -v xvfb-run >/dev/null 2>&1; then
-  xvfb-run -a ctest --output-on-failure -j"$(nproc)" "$@"
+  xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure -j"$(nproc)" "$@"
 else
   ctest --output-on-failure -j"$(nproc)" "$@"
 fi
