@@ -48,7 +48,7 @@ int terminal_edge_index(const ElasticRod& rod, int side) { return side == 0 ? 0 
 
 }  // namespace
 
-void terminal_edge_jacobian(const Joint& joint, int label, int sign, const SourceFrame& source,
+XSHELL_FLATTEN void terminal_edge_jacobian(const Joint& joint, int label, int sign, const SourceFrame& source,
                             double theta_hint, Eigen::Matrix<double, 7, 9>& jacobian) {
   using D = Dual1<9>;
   D q[9];
@@ -72,7 +72,7 @@ std::array<D, 9> joint_geometry_duals(const Joint& joint) {
 }
 }  // namespace
 
-void joint_geometry_derivatives(const Joint& joint, JointGeometryDerivatives& out) {
+XSHELL_FLATTEN void joint_geometry_derivatives(const Joint& joint, JointGeometryDerivatives& out) {
   const std::array<Dual<6>, 9> v = joint_geometry_duals<Dual<6>>(joint);
   for (int k = 0; k < 9; ++k) {
     out.value[k] = v[k].v;
@@ -81,7 +81,7 @@ void joint_geometry_derivatives(const Joint& joint, JointGeometryDerivatives& ou
   }
 }
 
-void joint_geometry_jacobian(const Joint& joint, JointGeometryDerivatives& out) {
+XSHELL_FLATTEN void joint_geometry_jacobian(const Joint& joint, JointGeometryDerivatives& out) {
   const std::array<Dual1<6>, 9> v = joint_geometry_duals<Dual1<6>>(joint);
   for (int k = 0; k < 9; ++k) {
     out.value[k] = v[k].v;
@@ -132,7 +132,7 @@ Eigen::Matrix<double, 6, 6> edge_and_normal_jacobian(const JointGeometryDerivati
 
 }  // namespace
 
-void terminal_edge_jacobian(const JointGeometryDerivatives& geometry, int label, int sign,
+XSHELL_FLATTEN void terminal_edge_jacobian(const JointGeometryDerivatives& geometry, int label, int sign,
                             const SourceFrame& source, Eigen::Matrix<double, 7, 9>& jacobian) {
   const double s = static_cast<double>(sign);
   const int e0 = 3 * label;
@@ -145,7 +145,7 @@ void terminal_edge_jacobian(const JointGeometryDerivatives& geometry, int label,
   jacobian.block<1, 6>(6, 3) = g.transpose() * edge_and_normal_jacobian(geometry, e0, s);
 }
 
-void terminal_edge_derivatives(const JointGeometryDerivatives& geometry, int label, int sign,
+XSHELL_FLATTEN void terminal_edge_derivatives(const JointGeometryDerivatives& geometry, int label, int sign,
                                const SourceFrame& source, TerminalEdgeDerivatives& out) {
   const double s = static_cast<double>(sign);
   const int e0 = 3 * label;  // rows of e_X in the geometry

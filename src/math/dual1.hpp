@@ -12,13 +12,8 @@
 #include <cmath>
 
 #include "dual.hpp"
+#include "inlining.hpp"
 
-// The operations are tiny; inlining them is what makes Dual1 cheap.
-#if defined(__GNUC__)
-#define XSHELL_DUAL_INLINE __attribute__((always_inline)) inline
-#else
-#define XSHELL_DUAL_INLINE inline
-#endif
 
 namespace xshell {
 

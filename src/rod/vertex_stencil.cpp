@@ -33,7 +33,7 @@ VertexStrains<double> vertex_strains(const VertexDofs& q, const VertexStencil& s
   return strains_of<double>(to_array(q), s);
 }
 
-VertexEnergy<double> vertex_energy(const VertexDofs& q, const VertexStencil& s) {
+XSHELL_FLATTEN VertexEnergy<double> vertex_energy(const VertexDofs& q, const VertexStencil& s) {
   return vertex_energy(strains_of<double>(to_array(q), s), s);
 }
 
@@ -49,14 +49,14 @@ VertexEnergy<double> vertex_energy_derivatives(const VertexDofs& q, const Vertex
   return {e.bending.v, e.twisting.v};
 }
 
-VertexEnergy<double> vertex_energy_gradient(const VertexDofs& q, const VertexStencil& s, VertexGradient& gradient) {
+XSHELL_FLATTEN VertexEnergy<double> vertex_energy_gradient(const VertexDofs& q, const VertexStencil& s, VertexGradient& gradient) {
   const V3<double> x0(q[0], q[1], q[2]), x1(q[3], q[4], q[5]), x2(q[6], q[7], q[8]);
   const VertexEdgeGradient<double> d = vertex_edge_gradient(x1 - x0, x2 - x1, q[9], q[10], s);
   scatter_gradient(d, gradient);
   return {d.bending, d.twisting};
 }
 
-VertexEnergy<double> vertex_energy_hessian(const VertexDofs& q, const VertexStencil& s, VertexGradient& gradient,
+XSHELL_FLATTEN VertexEnergy<double> vertex_energy_hessian(const VertexDofs& q, const VertexStencil& s, VertexGradient& gradient,
                                            VertexHessian& hessian) {
   using D = Dual1<8>;
   const V3<D> e0(D::variable(0, q[3] - q[0]), D::variable(1, q[4] - q[1]), D::variable(2, q[5] - q[2]));
