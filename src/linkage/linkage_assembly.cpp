@@ -1,9 +1,11 @@
 #include "linkage_assembly.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "math/dual1.hpp"
+#include "math/rotation.hpp"
 #include "segment_parallel.hpp"
 
 #ifdef _OPENMP
@@ -72,13 +74,78 @@ std::array<D, 9> joint_geometry_duals(const Joint& joint) {
 }
 }  // namespace
 
-XSHELL_FLATTEN void joint_geometry_derivatives(const Joint& joint, JointGeometryDerivatives& out) {
+XSHELL_FLATTEN void joint_geometry_derivatives_by_ad(const Joint& joint, JointGeometryDerivatives& out) {
   const std::array<Dual<6>, 9> v = joint_geometry_duals<Dual<6>>(joint);
   for (int k = 0; k < 9; ++k) {
     out.value[k] = v[k].v;
     out.jacobian.row(k) = v[k].g.transpose();
     out.hessians[k] = v[k].h;
   }
+}
+
+namespace {
+// Rotation joints (joint.hpp): with c = cos(alpha/2), s = sin(alpha/2),
+//   e_A = l_A R(w) (c b1 - s b2),  e_B = l_B R(w) (c b1 + s b2),  n = R(w) n0,
+// so R(w) b1, R(w) b2, R(w) n0 by second-order AD over w alone (Dual<3>)
+// give everything; the alpha and length derivatives are written out.
+// Local parameter order: w (0-2), alpha (3), l_A (4), l_B (5).
+XSHELL_FLATTEN void rotation_joint_geometry_derivatives(const Joint& joint, JointGeometryDerivatives& out) {
+  using D = Dual<3>;
+  const JointParams& q = joint.params();
+  const V3<D> w(D::variable(0, q[kOmega]), D::variable(1, q[kOmega + 1]), D::variable(2, q[kOmega + 2]));
+  const Eigen::Matrix3d& frame = joint.reference_frame();
+  V3<D> rotated[3];
+  for (int k = 0; k < 3; ++k) rotated[k] = rotate(w, lift<D>(frame.col(k)));
+  const D* r1[3] = {&rotated[0].x, &rotated[0].y, &rotated[0].z};
+  const D* r2[3] = {&rotated[1].x, &rotated[1].y, &rotated[1].z};
+  const D* rn[3] = {&rotated[2].x, &rotated[2].y, &rotated[2].z};
+  const double c = std::cos(0.5 * q[kAlpha]), s = std::sin(0.5 * q[kAlpha]);
+  for (int label = 0; label < 2; ++label) {
+    const double sign = label == 0 ? -1.0 : 1.0;
+    const double l = q[kLengthA + label];
+    const int li = 4 + label;  // local index of l_X
+    // u = a r1 + b r2 and its alpha derivatives.
+    const double a = c, b = sign * s, da = -0.5 * s, db = 0.5 * sign * c, dda = -0.25 * c, ddb = -0.25 * sign * s;
+    for (int k = 0; k < 3; ++k) {
+      const D& p = *r1[k];
+      const D& m = *r2[k];
+      const int row = 3 * label + k;
+      const double u = a * p.v + b * m.v, du = da * p.v + db * m.v;
+      const Eigen::Vector3d gu = a * p.g + b * m.g, gdu = da * p.g + db * m.g;
+      out.value[row] = l * u;
+      out.jacobian.row(row).setZero();
+      out.jacobian.block<1, 3>(row, 0) = l * gu.transpose();
+      out.jacobian(row, 3) = l * du;
+      out.jacobian(row, li) = u;
+      Eigen::Matrix<double, 6, 6>& h = out.hessians[row];
+      h.setZero();
+      const Eigen::Matrix3d hw = l * (a * p.h + b * m.h);
+      h.block<3, 3>(0, 0) = 0.5 * (hw + hw.transpose());  // symmetric bit for bit
+      h.block<3, 1>(0, 3) = l * gdu;
+      h.block<3, 1>(0, li) = gu;
+      h(3, 3) = l * (dda * p.v + ddb * m.v);
+      h(3, li) = du;
+      h.block<1, 3>(3, 0) = h.block<3, 1>(0, 3).transpose();
+      h.block<1, 3>(li, 0) = h.block<3, 1>(0, li).transpose();
+      h(li, 3) = du;
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    const D& n = *rn[k];
+    out.value[6 + k] = n.v;
+    out.jacobian.row(6 + k).setZero();
+    out.jacobian.block<1, 3>(6 + k, 0) = n.g.transpose();
+    out.hessians[6 + k].setZero();
+    out.hessians[6 + k].block<3, 3>(0, 0) = 0.5 * (n.h + n.h.transpose());
+  }
+}
+}  // namespace
+
+void joint_geometry_derivatives(const Joint& joint, JointGeometryDerivatives& out) {
+  if (joint.kind() == JointKind::Rotation)
+    rotation_joint_geometry_derivatives(joint, out);
+  else
+    joint_geometry_derivatives_by_ad(joint, out);
 }
 
 XSHELL_FLATTEN void joint_geometry_jacobian(const Joint& joint, JointGeometryDerivatives& out) {
@@ -244,6 +311,7 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
         bool coupled = false;
         for (int v : plan.controlled[side]) coupled = coupled || rod_pattern(plan.free_full[r], v);
         if (!coupled) continue;
+        plan.coupled_free[side].push_back(r);
         local.block(r, o, 1, 9).setConstant(true);
         local.block(o, r, 9, 1).setConstant(true);
       }
@@ -252,6 +320,7 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
       bool coupled = false;
       for (int a : plan.controlled[side])
         for (int b : plan.controlled[1 - side]) coupled = coupled || rod_pattern(a, b);
+      plan.ends_coupled[side] = coupled;
       if (coupled) local.block(o, other, 9, 9).setConstant(true);
     }
     plan.hessian_begin = static_cast<long>(contribution_entry.size());
@@ -345,7 +414,7 @@ void LinkageAssembly::prepare_scratch() {
     w.rod_hessian.resize(static_cast<size_t>(max_rod_dofs_) * max_rod_dofs_);
     w.local_gradient.resize(max_local_);
     w.local_hessian.resize(static_cast<size_t>(max_local_) * max_local_);
-    w.coupling.resize(static_cast<size_t>(max_local_) * 7);
+    w.coupling_rows.resize(max_local_, 7);
   }
 }
 
@@ -393,28 +462,42 @@ void LinkageAssembly::local_derivatives(const RodLinkage& linkage, int s,
   }
   if (!with_hessian) return;
 
-  // Hessian: J^T H J by blocks, plus the joints' second derivatives.
+  // Hessian: J^T H J by blocks, plus the joints' second derivatives. Only
+  // entries in the plan's pattern are read afterwards: all free-free ones,
+  // the rows of free unknowns coupled to an end, and the joint blocks (the
+  // only ones accumulated, so the only ones zeroed).
   const Eigen::Map<const Eigen::MatrixXd> hv(w.rod_hessian.data(), nv, nv);
   Eigen::Map<Eigen::MatrixXd> L(w.local_hessian.data(), m, m);
-  Eigen::Map<Eigen::MatrixXd> coupling(w.coupling.data(), nf, 7);
-  L.setZero();
   for (int c = 0; c < nf; ++c)
     for (int r = 0; r < nf; ++r) L(r, c) = hv(plan.free_full[r], plan.free_full[c]);
   for (int side = 0; side < 2; ++side) {
     const int o = plan.joint_local[side];
     if (o < 0) continue;
+    for (int other = 0; other < 2; ++other)
+      if (plan.joint_local[other] >= 0) L.block<9, 9>(o, plan.joint_local[other]).setZero();
+  }
+  for (int side = 0; side < 2; ++side) {
+    const int o = plan.joint_local[side];
+    if (o < 0) continue;
     const std::array<int, 7>& cs = plan.controlled[side];
-    for (int k = 0; k < 7; ++k)
-      for (int r = 0; r < nf; ++r) coupling(r, k) = hv(plan.free_full[r], cs[k]);
-    L.block(0, o, nf, 9).noalias() = coupling.lazyProduct(w.jacobian[side]);  // small: no GEMM blocking
-    L.block(o, 0, 9, nf) = L.block(0, o, nf, 9).transpose();
+    const std::vector<int>& rows = plan.coupled_free[side];
+    const int nc = static_cast<int>(rows.size());
+    auto coupling = w.coupling_rows.topRows(nc);
+    for (int i = 0; i < nc; ++i)
+      for (int k = 0; k < 7; ++k) coupling(i, k) = hv(plan.free_full[rows[i]], cs[k]);
+    for (int i = 0; i < nc; ++i) {
+      const Eigen::Matrix<double, 1, 9> row = coupling.row(i).lazyProduct(w.jacobian[side]);
+      L.block<1, 9>(rows[i], o) = row;
+      L.block<9, 1>(o, rows[i]) = row.transpose();
+    }
     for (int other = side; other < 2; ++other) {
       const int p = plan.joint_local[other];
-      if (p < 0) continue;
+      if (p < 0 || (other != side && !plan.ends_coupled[side])) continue;
       Eigen::Matrix<double, 7, 7> hcc;
       for (int b = 0; b < 7; ++b)
         for (int a = 0; a < 7; ++a) hcc(a, b) = hv(cs[a], plan.controlled[other][b]);
-      const Eigen::Matrix<double, 9, 9> block = w.jacobian[side].transpose() * hcc * w.jacobian[other];
+      const Eigen::Matrix<double, 7, 9> hj = hcc.lazyProduct(w.jacobian[other]);
+      const Eigen::Matrix<double, 9, 9> block = w.jacobian[side].transpose().lazyProduct(hj);
       L.block<9, 9>(o, p) += block;
       if (other != side) L.block<9, 9>(p, o) += block.transpose();
     }

@@ -48,7 +48,11 @@ struct JointGeometryDerivatives {
   Eigen::Matrix<double, 9, 6> jacobian;       // row k: d v_k / d params[3..8]
   Eigen::Matrix<double, 6, 6> hessians[9];    // d2 v_k / d params[3..8]^2
 };
+// Rotation joints take a shorter road (AD over the rotation vector alone,
+// the rest by hand); edge-vector joints, and the test of that road, take
+// second-order AD over all six.
 void joint_geometry_derivatives(const Joint& joint, JointGeometryDerivatives& out);
+void joint_geometry_derivatives_by_ad(const Joint& joint, JointGeometryDerivatives& out);
 // The same values and Jacobian by first-order AD (hessians untouched): what
 // gradients need.
 void joint_geometry_jacobian(const Joint& joint, JointGeometryDerivatives& out);
@@ -104,6 +108,8 @@ class LinkageAssembly {
     std::vector<int> free_full;                  // full variable of each local free unknown
     std::array<int, 2> joint_local{{-1, -1}};    // local offset of each end's joint block, or -1
     std::array<std::array<int, 7>, 2> controlled{};  // full variable of each terminal value, per end
+    std::array<std::vector<int>, 2> coupled_free;    // local free unknowns the rod couples to each end's values
+    std::array<bool, 2> ends_coupled{{false, false}};  // whether the rod couples the two ends' values
     std::vector<int> global;                     // reduced index of each local unknown
     // Kept local Hessian entries (column-major index): those that share
     // their global entry with other contributions, whose range in the
@@ -121,6 +127,7 @@ class LinkageAssembly {
   struct Scratch {
     std::vector<double> rod_gradient, rod_hessian, local_gradient, local_hessian, coupling;
     Eigen::Matrix<double, 7, 9> jacobian[2];
+    Eigen::Matrix<double, Eigen::Dynamic, 7> coupling_rows;  // rows of coupled free unknowns
     TerminalEdgeDerivatives terminal[2];
   };
   // Local gradient (and Hessian) of segment s into scratch.

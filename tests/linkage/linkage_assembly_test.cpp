@@ -103,6 +103,36 @@ TEST_CASE("Assembled free gradient and Hessian equal the plain chain rule, patte
   CHECK(compared > 10000);
 }
 
+TEST_CASE("Rotation joints: the geometry's derivatives by hand equal second-order AD over all six parameters") {
+  std::mt19937 rng(31);
+  int compared = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    const Eigen::Vector3d n = Eigen::Vector3d(random_vector(3, rng)).normalized();
+    const Eigen::Vector3d t_a = any_perpendicular(n);
+    const double alpha = 0.3 + 2.5 * std::abs(random_vector(1, rng)[0]);
+    const Eigen::Vector3d t_b = std::cos(alpha) * t_a + std::sin(alpha) * n.cross(t_a);
+    Joint joint(random_vector(3, rng), t_a, t_b, n, 0.5 + trial * 0.1, 2.0 - trial * 0.03);
+    JointParams p = joint.params();
+    // Folded (w = 0, the series branch), tiny, and far from the fold.
+    const double scale = trial % 3 == 0 ? 0.0 : trial % 3 == 1 ? 1e-4 : 1.5;
+    p.segment<3>(kOmega) = random_vector(3, rng, scale);
+    joint.set_params(p);
+    REQUIRE(joint.kind() == JointKind::Rotation);
+    JointGeometryDerivatives fast, ad;
+    joint_geometry_derivatives(joint, fast);
+    joint_geometry_derivatives_by_ad(joint, ad);
+    CHECK((fast.value - ad.value).cwiseAbs().maxCoeff() <= 1e-14 * ad.value.cwiseAbs().maxCoeff());
+    CHECK((fast.jacobian - ad.jacobian).cwiseAbs().maxCoeff() <= 1e-14 * ad.jacobian.cwiseAbs().maxCoeff());
+    for (int k = 0; k < 9; ++k) {
+      const double hscale = std::max(ad.hessians[k].cwiseAbs().maxCoeff(), 1e-3);
+      CHECK((fast.hessians[k] - ad.hessians[k]).cwiseAbs().maxCoeff() <= 1e-13 * hscale);
+      CHECK((fast.hessians[k] - fast.hessians[k].transpose()).cwiseAbs().maxCoeff() == 0.0);
+      compared += 36;
+    }
+  }
+  CHECK(compared == 30 * 9 * 36);
+}
+
 TEST_CASE("Terminal-edge derivatives from the joint's geometry equal AD over the joint's parameters") {
   std::mt19937 rng(29);
   int compared = 0;
