@@ -255,6 +255,7 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
   plans_.resize(ns);
   std::vector<Eigen::Triplet<double>> pattern_entries;
   std::vector<std::array<int, 2>> contribution_entry;  // (free row, free column) per Hessian contribution
+  std::vector<std::vector<int>> kept_entries(ns);       // per segment, its local entries (column-major index)
   long gradient_count = 0;
   for (int s = 0; s < ns; ++s) {
     const ElasticRod& rod = linkage.segment(s);
@@ -330,7 +331,7 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
       for (int r = 0; r < m; ++r) {
         const int fr = free_position[plan.global[r]];
         if (fr < 0 || !local(r, c)) continue;
-        plan.entries.push_back(r + m * c);
+        kept_entries[s].push_back(r + m * c);
         contribution_entry.push_back({fr, fc});
         pattern_entries.emplace_back(fr, fc, 0.0);
       }
@@ -369,19 +370,30 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
   for (size_t i = 0; i < shared_slots_.size(); ++i) hessian_sources_begin_[i + 1] += hessian_sources_begin_[i];
   hessian_sources_.resize(hessian_sources_begin_.back());
   std::vector<long> fill(hessian_sources_begin_.begin(), hessian_sources_begin_.end() - 1);
+  // Appends local entry -> target to runs, extending the last run when both
+  // follow on from it.
+  const auto append = [](std::vector<CopyRun>& runs, int entry, long target) {
+    if (!runs.empty()) {
+      CopyRun& last = runs.back();
+      if (last.first + last.length == entry && last.target + last.length == target) {
+        ++last.length;
+        return;
+      }
+    }
+    runs.push_back({entry, 1, target});
+  };
   long shared_count = 0;
-  for (SegmentPlan& plan : plans_) {
+  for (int s = 0; s < ns; ++s) {
+    SegmentPlan& plan = plans_[s];
+    const std::vector<int>& entries = kept_entries[s];
     const long first = plan.hessian_begin;
-    std::vector<int> all = std::move(plan.entries);
-    plan.entries.clear();
     plan.hessian_begin = shared_count;
-    for (size_t i = 0; i < all.size(); ++i) {
+    for (size_t i = 0; i < entries.size(); ++i) {
       const long k = slot[first + static_cast<long>(i)];
       if (shared_index[k] < 0) {
-        plan.direct_entries.push_back(all[i]);
-        plan.direct_slots.push_back(k);
+        append(plan.direct_runs, entries[i], k);
       } else {
-        plan.entries.push_back(all[i]);
+        append(plan.shared_runs, entries[i], shared_count - plan.hessian_begin);
         hessian_sources_[fill[shared_index[k]]++] = shared_count++;
       }
     }
@@ -571,8 +583,10 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
       const SegmentPlan& plan = plans_[s];
       const double* local = w.local_hessian.data();  // column-major, plan.size() square
       double* target = hessian_contributions_.data() + plan.hessian_begin;
-      for (size_t i = 0; i < plan.entries.size(); ++i) target[i] = local[plan.entries[i]];
-      for (size_t i = 0; i < plan.direct_entries.size(); ++i) values[plan.direct_slots[i]] = local[plan.direct_entries[i]];
+      for (const CopyRun& run : plan.shared_runs)
+        for (int i = 0; i < run.length; ++i) target[run.target + i] = local[run.first + i];
+      for (const CopyRun& run : plan.direct_runs)
+        for (int i = 0; i < run.length; ++i) values[run.target + i] = local[run.first + i];
     }
 #pragma omp for schedule(static)
     for (long k = 0; k < shared; ++k) {

@@ -104,6 +104,11 @@ class LinkageAssembly {
   const Eigen::SparseMatrix<double>& pattern() const { return pattern_; }
 
  private:
+  // length values from local[first..] to target[..] (both consecutive).
+  struct CopyRun {
+    int first, length;
+    long target;
+  };
   struct SegmentPlan {
     std::vector<int> free_full;                  // full variable of each local free unknown
     std::array<int, 2> joint_local{{-1, -1}};    // local offset of each end's joint block, or -1
@@ -111,14 +116,14 @@ class LinkageAssembly {
     std::array<std::vector<int>, 2> coupled_free;    // local free unknowns the rod couples to each end's values
     std::array<bool, 2> ends_coupled{{false, false}};  // whether the rod couples the two ends' values
     std::vector<int> global;                     // reduced index of each local unknown
-    // Kept local Hessian entries (column-major index): those that share
-    // their global entry with other contributions, whose range in the
-    // contribution buffer starts at hessian_begin, and those that are alone
-    // in theirs (written straight to its value slot).
-    std::vector<int> entries;
+    // Kept local Hessian entries (column-major index), as runs of
+    // consecutive entries: those that share their global entry with other
+    // contributions, copied to the contribution buffer (a range starting at
+    // hessian_begin, target = offset in it), and those that are alone in
+    // theirs, copied straight to their value slots (target = first slot).
+    std::vector<CopyRun> shared_runs;
     long hessian_begin = 0;
-    std::vector<int> direct_entries;
-    std::vector<long> direct_slots;
+    std::vector<CopyRun> direct_runs;
     long gradient_begin = 0;                     // local gradient's range in its buffer
     int size() const { return static_cast<int>(global.size()); }
   };
