@@ -4,10 +4,11 @@
 // The symbolic analysis (fill-reducing ordering as CHOLMOD chooses it,
 // supernodal structure) is computed once per pattern and reused by every
 // numeric factorization until a matrix with a different pattern arrives.
-// Only the upper triangle of the (full, both-triangles) input is read. A
-// diagonal shift can be added without rebuilding the pattern: the solver
-// keeps its own upper-triangular copy whose pattern always contains the
-// diagonal.
+// Only the upper triangle of the (full, both-triangles) input is read. The
+// solver keeps its own copy of the matrix, already permuted by the
+// fill-reducing ordering, whose pattern always contains the diagonal: a
+// diagonal shift needs no new pattern, and CHOLMOD factorizes the copy in
+// place.
 #pragma once
 
 #include <Eigen/Core>
