@@ -162,6 +162,7 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
   objective_.rebase();
   s.evaluator.sync();
   s.evaluator.clear_failures();
+  s.system.prepare_hessian();
   s.system.set_mass(objective_.mass());
   s.system.set_deferral(options_.line_search == LineSearch::Kinsol ? NewtonSystem::Deferral::Never
                         : options_.line_search == LineSearch::Energy
@@ -290,6 +291,7 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
     // The rebase moves nothing (the energy stays), but re-expresses q.
     objective_.rebase();
     s.evaluator.sync();
+    s.system.prepare_hessian();
     report.gradient_measure = weighted_max_norm(weights, s.evaluator.gradient());
     report.factorizations = total_factorizations() - factorizations_at_start;
     report.shifted = s.system.any_shift();

@@ -40,6 +40,12 @@ class NewtonSystem final : public DirectSolveBackend {
   static int jacobian(N_Vector u, N_Vector fu, SUNMatrix J, void* user_data, N_Vector tmp1,
                       N_Vector tmp2);
 
+  // Asks the objective for its Hessian at the current iterate ahead of the
+  // next setup() or the stability check: an objective that caches it (the
+  // linkage's) computes its gradient in the same pass, so the driver's
+  // convergence test that follows costs nothing. Timed as setup's Hessian;
+  // a failure is left for setup() to report.
+  void prepare_hessian();
   int setup() override;
   int solve(const double* b, double* x) override;
 

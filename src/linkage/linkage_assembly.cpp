@@ -540,18 +540,22 @@ void LinkageAssembly::gradient(const RodLinkage& linkage, const std::vector<Eige
       std::copy(w.local_gradient.begin(), w.local_gradient.begin() + plans_[s].size(),
                 gradient_contributions_.begin() + plans_[s].gradient_begin);
     }
+    sum_gradient(out);
+  }
+}
+
+void LinkageAssembly::sum_gradient(Eigen::VectorXd& out) const {
 #pragma omp for schedule(static)
-    for (int k = 0; k < num_dofs_; ++k) {
-      double sum = 0.0;
-      for (long i = gradient_sources_begin_[k]; i < gradient_sources_begin_[k + 1]; ++i)
-        sum += gradient_contributions_[gradient_sources_[i]];
-      out[k] = sum;
-    }
+  for (int k = 0; k < num_dofs_; ++k) {
+    double sum = 0.0;
+    for (long i = gradient_sources_begin_[k]; i < gradient_sources_begin_[k + 1]; ++i)
+      sum += gradient_contributions_[gradient_sources_[i]];
+    out[k] = sum;
   }
 }
 
 void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen::VectorXd>* forces,
-                              Eigen::SparseMatrix<double>& out) {
+                              Eigen::SparseMatrix<double>& out, Eigen::VectorXd* gradient) {
   if (num_dofs_ != linkage.num_dofs()) throw std::logic_error("LinkageAssembly: built for another linkage");
   prepare_scratch();
   // `out` keeps pattern_ between calls; check it fully only when it is not
@@ -568,6 +572,7 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
     last_values_ = out.valuePtr();
   }
   double* values = out.valuePtr();
+  if (gradient) gradient->resize(num_dofs_);
   const long shared = static_cast<long>(shared_slots_.size());
   const int nj = linkage.num_joints();
   joint_geometry_.resize(nj);
@@ -587,6 +592,9 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
         for (int i = 0; i < run.length; ++i) target[run.target + i] = local[run.first + i];
       for (const CopyRun& run : plan.direct_runs)
         for (int i = 0; i < run.length; ++i) values[run.target + i] = local[run.first + i];
+      if (gradient)
+        std::copy(w.local_gradient.begin(), w.local_gradient.begin() + plan.size(),
+                  gradient_contributions_.begin() + plan.gradient_begin);
     }
 #pragma omp for schedule(static)
     for (long k = 0; k < shared; ++k) {
@@ -595,6 +603,7 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
         sum += hessian_contributions_[hessian_sources_[i]];
       values[shared_slots_[k]] = sum;
     }
+    if (gradient) sum_gradient(*gradient);
   }
 }
 

@@ -98,9 +98,10 @@ class LinkageAssembly {
   void gradient(const RodLinkage& linkage, const std::vector<Eigen::VectorXd>* forces, Eigen::VectorXd& out);
   // Its Hessian restricted to the free unknowns (both triangles). `out` gets
   // pattern() the first time (or when its pattern differs) and then only
-  // new values.
+  // new values. With `gradient`, also the gradient above, from the same
+  // pass (as gradient() gives it, to round-off).
   void hessian(const RodLinkage& linkage, const std::vector<Eigen::VectorXd>* forces,
-               Eigen::SparseMatrix<double>& out);
+               Eigen::SparseMatrix<double>& out, Eigen::VectorXd* gradient = nullptr);
   const Eigen::SparseMatrix<double>& pattern() const { return pattern_; }
 
  private:
@@ -138,6 +139,9 @@ class LinkageAssembly {
   // Local gradient (and Hessian) of segment s into scratch.
   void local_derivatives(const RodLinkage& linkage, int s, const std::vector<Eigen::VectorXd>* forces,
                          bool with_hessian, Scratch& scratch) const;
+  // Sums the gradient contributions into out (num_dofs_): a worksharing loop
+  // inside the caller's parallel region.
+  void sum_gradient(Eigen::VectorXd& out) const;
   Scratch& scratch_for_thread();
   void prepare_scratch();
 

@@ -210,9 +210,13 @@ Eigen::VectorXd LinkageProblem::dofs_with_free(const Eigen::VectorXd& q) const {
   return r;
 }
 
-void LinkageProblem::set_free_dofs(const Eigen::VectorXd& q) { linkage_.set_dofs(dofs_with_free(q)); }
+void LinkageProblem::set_free_dofs(const Eigen::VectorXd& q) {
+  ++version_;
+  linkage_.set_dofs(dofs_with_free(q));
+}
 
 double LinkageProblem::set_free_dofs_and_energy(const Eigen::VectorXd& q) {
+  ++version_;
   RodEnergy elastic;
   linkage_.set_dofs(dofs_with_free(q), &elastic);
   return energy_with(elastic).total();
@@ -234,11 +238,13 @@ EnergyReport LinkageProblem::energy_with(const RodEnergy& e) const {
 }
 
 Eigen::VectorXd LinkageProblem::full_gradient() const {
-  if (!assembly_.matches(linkage_, free_position_)) assembly_ = LinkageAssembly(linkage_, free_position_);
-  Eigen::VectorXd g;
-  assembly_.gradient(linkage_, &segment_forces_, g);
-  g -= point_forces_;
-  return g;
+  if (gradient_version_ != version_) {
+    if (!assembly_.matches(linkage_, free_position_)) assembly_ = LinkageAssembly(linkage_, free_position_);
+    assembly_.gradient(linkage_, &segment_forces_, gradient_);
+    gradient_ -= point_forces_;
+    gradient_version_ = version_;
+  }
+  return gradient_;
 }
 
 Eigen::VectorXd LinkageProblem::free_gradient() const {
@@ -249,8 +255,11 @@ Eigen::VectorXd LinkageProblem::free_gradient() const {
 }
 
 const Eigen::SparseMatrix<double>& LinkageProblem::free_hessian() {
+  if (hessian_version_ == version_) return hessian_;
   if (!assembly_.matches(linkage_, free_position_)) assembly_ = LinkageAssembly(linkage_, free_position_);
-  assembly_.hessian(linkage_, &segment_forces_, hessian_);
+  assembly_.hessian(linkage_, &segment_forces_, hessian_, &gradient_);
+  gradient_ -= point_forces_;
+  gradient_version_ = hessian_version_ = version_;
   return hessian_;
 }
 
@@ -291,6 +300,7 @@ Eigen::VectorXd LinkageProblem::free_mass() const {
 }
 
 void LinkageProblem::rebase(Eigen::VectorXd* free_velocity) {
+  ++version_;
   if (!free_velocity) {
     linkage_.update_source_frames();
     linkage_.fold_joints();

@@ -90,7 +90,10 @@ class LinkageProblem {
   double set_free_dofs_and_energy(const Eigen::VectorXd& q);
   // All reduced unknowns (fixed ones included), e.g. for restarts.
   Eigen::VectorXd dofs() const { return linkage_.dofs(); }
-  void set_dofs(const Eigen::VectorXd& r) { linkage_.set_dofs(r); }
+  void set_dofs(const Eigen::VectorXd& r) {
+    linkage_.set_dofs(r);
+    ++version_;
+  }
 
   EnergyReport energy() const;
   Eigen::VectorXd free_gradient() const;
@@ -98,7 +101,10 @@ class LinkageProblem {
   // included: at an equilibrium, minus its fixed entries are the generalized
   // reactions of the supports (reactions.hpp).
   Eigen::VectorXd full_gradient() const;
-  // Free Hessian, both triangles; its pattern never changes.
+  // Free Hessian, both triangles; its pattern never changes. Its pass also
+  // yields the gradient: until the configuration (or its parametrization,
+  // rebase()) changes, the gradient functions return that one, and a second
+  // free_hessian() returns the same matrix without recomputing it.
   const Eigen::SparseMatrix<double>& free_hessian();
   Eigen::VectorXd gradient_weights() const;
   // max |w_i g_i| over the free unknowns.
@@ -148,6 +154,12 @@ class LinkageProblem {
   Eigen::VectorXd input_dofs_;  // joint positions at the input (the rest is unused)
   double length_scale_ = 1.0, force_scale_ = 1.0;
   Eigen::SparseMatrix<double> hessian_;
+  // Bumped by every change of the configuration or of its parametrization;
+  // the full gradient and the Hessian above are those of these versions.
+  long version_ = 0;
+  mutable long gradient_version_ = -1;
+  mutable Eigen::VectorXd gradient_;
+  long hessian_version_ = -1;
   // Pattern, value slots and work space of free_gradient() / free_hessian(),
   // built at their first call (and again if the free unknowns change).
   mutable LinkageAssembly assembly_;

@@ -189,17 +189,25 @@ TEST_CASE("Assembly is deterministic: 1 and 2 threads give bit-identical results
 #ifdef _OPENMP
   std::mt19937 rng(23);
   LinkageProblem problem(RodLinkage(grid(4, 4, 0.3), test_options(RestShape::Straight, 5)), loads(false));
-  problem.set_free_dofs(problem.free_dofs() + random_vector(problem.num_free(), rng, 0.05));
+  const Eigen::VectorXd q = problem.free_dofs() + random_vector(problem.num_free(), rng, 0.05);
   const int before = omp_get_max_threads();
-  omp_set_num_threads(1);
-  const Eigen::VectorXd g1 = problem.free_gradient();
-  const Eigen::SparseMatrix<double> h1 = problem.free_hessian();
-  omp_set_num_threads(2);
-  const Eigen::VectorXd g2 = problem.free_gradient();
-  const Eigen::SparseMatrix<double> h2 = problem.free_hessian();
+  // Setting q again before each call discards the problem's cached results.
+  auto evaluate = [&](int threads, Eigen::VectorXd& g, Eigen::SparseMatrix<double>& h, Eigen::VectorXd& gh) {
+    omp_set_num_threads(threads);
+    problem.set_free_dofs(q);
+    g = problem.free_gradient();
+    problem.set_free_dofs(q);
+    h = problem.free_hessian();
+    gh = problem.free_gradient();  // from the Hessian's pass
+  };
+  Eigen::VectorXd g1, g2, gh1, gh2;
+  Eigen::SparseMatrix<double> h1, h2;
+  evaluate(1, g1, h1, gh1);
+  evaluate(2, g2, h2, gh2);
   omp_set_num_threads(before);
   REQUIRE(h1.nonZeros() == h2.nonZeros());
   CHECK(g1 == g2);
+  CHECK(gh1 == gh2);
   int equal = 0;
   for (Eigen::Index k = 0; k < h1.nonZeros(); ++k) equal += h1.valuePtr()[k] == h2.valuePtr()[k];
   CHECK(equal == h1.nonZeros());
@@ -207,4 +215,40 @@ TEST_CASE("Assembly is deterministic: 1 and 2 threads give bit-identical results
 #else
   MESSAGE("built without OpenMP: nothing to compare");
 #endif
+}
+
+TEST_CASE("The Hessian pass gives the gradient too, and both are recomputed after any change") {
+  std::mt19937 rng(41);
+  LinkageProblem problem(RodLinkage(grid(3, 4, 0.3), test_options(RestShape::Straight, 4)), loads(true));
+  const Eigen::VectorXd q = problem.free_dofs() + random_vector(problem.num_free(), rng, 0.05);
+  problem.set_free_dofs(q);
+  const Eigen::VectorXd g = problem.free_gradient();
+  problem.set_free_dofs(q);
+  const Eigen::SparseMatrix<double>& h = problem.free_hessian();
+  const Eigen::SparseMatrix<double> h_copy = h;
+  const Eigen::VectorXd g_from_hessian = problem.free_gradient();
+  CHECK((g_from_hessian - g).cwiseAbs().maxCoeff() <= 1e-12 * g.cwiseAbs().maxCoeff());
+  // Nothing changed: the same matrix, not recomputed.
+  CHECK(&problem.free_hessian() == &h);
+
+  // A move: new Hessian and gradient, equal to a fresh problem's there.
+  const Eigen::VectorXd q2 = q + random_vector(problem.num_free(), rng, 0.02);
+  problem.set_free_dofs(q2);
+  const Eigen::SparseMatrix<double> h2 = problem.free_hessian();
+  const Eigen::VectorXd g2 = problem.free_gradient();
+  LinkageProblem fresh(RodLinkage(grid(3, 4, 0.3), test_options(RestShape::Straight, 4)), loads(true));
+  fresh.set_free_dofs(q2);
+  CHECK((g2 - fresh.free_gradient()).cwiseAbs().maxCoeff() <= 1e-12 * g2.cwiseAbs().maxCoeff());
+  CHECK((h2 - h_copy).norm() > 1e-6 * h_copy.norm());
+  CHECK((h2 - fresh.free_hessian()).norm() <= 1e-12 * h2.norm());
+
+  // A rebase re-expresses the unknowns (the joints' rotations fold): the
+  // gradient over them changes, and is recomputed.
+  problem.rebase();
+  const Eigen::VectorXd g_rebased = problem.free_gradient();
+  CHECK((g_rebased - g2).cwiseAbs().maxCoeff() > 1e-9 * g2.cwiseAbs().maxCoeff());
+  // Setting the same unknowns again recomputes the rods' terminal edges
+  // from the folded joints (equal to round-off).
+  problem.set_dofs(problem.dofs());
+  CHECK((g_rebased - problem.free_gradient()).cwiseAbs().maxCoeff() <= 1e-12 * g2.cwiseAbs().maxCoeff());
 }
