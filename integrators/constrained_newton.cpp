@@ -180,10 +180,11 @@ ConstrainedNewtonResult ConstrainedNewtonSolver::solve(double target,
       s.evaluator.sync();
       const Eigen::VectorXd q0 = objective_.get();
       const Eigen::VectorXd w = objective_.gradient_weights();
+      // The Hessian first: the linkage's pass gives the gradient with it.
+      const Eigen::SparseMatrix<double>& H = objective_.hessian();
       const Eigen::VectorXd g0 = s.evaluator.gradient();
       const double e0 = objective_.energy();
       const double c = target - constraint_.value(q0);
-      const Eigen::SparseMatrix<double>& H = objective_.hessian();
 
       Eigen::VectorXd p;
       double tau = 0.0;  // the step's multiplier
