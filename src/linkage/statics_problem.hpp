@@ -106,6 +106,9 @@ class LinkageProblem {
   // rebase()) changes, the gradient functions return that one, and a second
   // free_hessian() returns the same matrix without recomputing it.
   const Eigen::SparseMatrix<double>& free_hessian();
+  // Forgets the cached gradient and Hessian, so that the next calls compute
+  // them (benchmarks time them this way).
+  void discard_cached_derivatives() { gradient_version_ = hessian_version_ = -1; }
   Eigen::VectorXd gradient_weights() const;
   // max |w_i g_i| over the free unknowns.
   double gradient_measure() const;
