@@ -213,7 +213,7 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
 
     const Clock::time_point iteration_start = Clock::now();
     const long factorizations_at_start = total_factorizations();
-    const Eigen::VectorXd q0 = objective_.get();
+    const Eigen::VectorXd q0 = s.evaluator.position();
     const Eigen::VectorXd weights = objective_.gradient_weights();
     as_eigen(s.f_scale.get()) = weights.cwiseAbs().cwiseMax(kMinimumScale);
     as_eigen(s.u.get()) = q0;
@@ -254,7 +254,7 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
                                      : "no energy decrease along the Newton step";
         break;
       }
-      as_eigen(s.u.get()) = s.evaluator.objective().get();
+      as_eigen(s.u.get()) = s.evaluator.position();
       accepted_energy = step.energy;
       flag = KIN_SUCCESS;
     }

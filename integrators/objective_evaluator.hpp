@@ -38,6 +38,8 @@ class ObjectiveEvaluator {
   // Moves the objective to q (size()) unless it is there already. Throws
   // what set() throws; afterwards the position is unknown.
   void move_to(const Eigen::Ref<const Eigen::VectorXd>& q);
+  // Where the objective is: the last sync() or move, else its get().
+  Eigen::VectorXd position() const { return known_ ? position_ : objective_.get(); }
   // The gradient at the current position (cached until the next move).
   const Eigen::VectorXd& gradient();
   // Moves to q (as move_to) and returns the energy there.

@@ -163,9 +163,13 @@ RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
 Eigen::VectorXd RodLinkage::dofs() const {
   Eigen::VectorXd r(num_dofs_);
   for (int s = 0; s < num_segments(); ++s) {
-    const Eigen::VectorXd q = rods_[s].dofs();
-    for (int k = 0; k < q.size(); ++k)
-      if (slots_[s][k] >= 0) r[slots_[s][k]] = q[k];
+    const ElasticRod& rod = rods_[s];
+    const std::vector<int>& slot = slots_[s];
+    for (int k = 0; k < rod.num_nodes(); ++k)
+      for (int c = 0; c < 3; ++c)
+        if (slot[ElasticRod::node_dof(k) + c] >= 0) r[slot[ElasticRod::node_dof(k) + c]] = rod.nodes()[k][c];
+    for (int j = 0; j < rod.num_edges(); ++j)
+      if (slot[rod.theta_dof(j)] >= 0) r[slot[rod.theta_dof(j)]] = rod.thetas()[j];
   }
   for (int j = 0; j < num_joints(); ++j) r.segment<9>(joint_offset_[j]) = joints_[j].params();
   return r;
