@@ -561,12 +561,21 @@ int main(int argc, char** argv) {
     factor_solve.push_back(r.solve_factorization_ms);
   }
   if (n.size() >= 2) {
-    std::printf("log-log slopes over the grids (%.0f to %.0f unknowns): iteration minus factorizations %.2f, "
+    // An iteration minus its factorizations timed alone can come out
+    // negative on a noisy machine (an iteration's factorizations run on a
+    // warmer or quieter moment): then that slope has no meaning.
+    const auto slope_text = [&](const std::vector<double>& y) {
+      if (*std::min_element(y.begin(), y.end()) <= 0.0) return std::string("n/a (some differences <= 0)");
+      char text[32];
+      std::snprintf(text, sizeof text, "%.2f", loglog_slope(n, y));
+      return std::string(text);
+    };
+    std::printf("log-log slopes over the grids (%.0f to %.0f unknowns): iteration minus factorizations %s, "
                 "Hessian %.2f, energy+gradient %.2f, factorization %.2f\n",
-                n.front(), n.back(), loglog_slope(n, outside), loglog_slope(n, hessian), loglog_slope(n, gradient),
+                n.front(), n.back(), slope_text(outside).c_str(), loglog_slope(n, hessian), loglog_slope(n, gradient),
                 loglog_slope(n, factor));
-    std::printf("the same in CPU time: iteration minus factorizations %.2f, Hessian %.2f, factorization %.2f\n",
-                loglog_slope(n, outside_cpu), loglog_slope(n, hessian_cpu), loglog_slope(n, factor_cpu));
+    std::printf("the same in CPU time: iteration minus factorizations %s, Hessian %.2f, factorization %.2f\n",
+                slope_text(outside_cpu).c_str(), loglog_slope(n, hessian_cpu), loglog_slope(n, factor_cpu));
     std::printf("timed inside the solves (medians per iteration): everything but the factorizations %.2f, "
                 "the factorizations %.2f\n",
                 loglog_slope(n, outside_solve), loglog_slope(n, factor_solve));
