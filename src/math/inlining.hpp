@@ -10,10 +10,26 @@
 //   XSHELL_FLATTEN      inlines everything a kernel calls, recursively.
 #pragma once
 
+//
+// Sanitizer builds do not flatten: instrumented, a flattened vertex Hessian
+// takes GCC more than twenty minutes to compile.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(undefined_behavior_sanitizer)
+#define XSHELL_SANITIZED 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define XSHELL_SANITIZED 1
+#endif
+
 #if defined(__GNUC__)
 #define XSHELL_DUAL_INLINE __attribute__((always_inline)) inline
-#define XSHELL_FLATTEN __attribute__((flatten))
 #else
 #define XSHELL_DUAL_INLINE inline
+#endif
+
+#if defined(__GNUC__) && !defined(XSHELL_SANITIZED)
+#define XSHELL_FLATTEN __attribute__((flatten))
+#else
 #define XSHELL_FLATTEN
 #endif
