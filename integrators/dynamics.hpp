@@ -211,7 +211,18 @@ struct DynamicsOptions {
   // (saddle sample 78 -> 70, single X 225 -> 167, hourglass 61 -> 52; the
   // column 111 -> 115), with as many factorizations; 4e-2 was no better.
   double relative_tolerance = 2e-2;
-  double absolute_tolerance = 1e-6;
+  // atol in units of unknown_scales: radians for angles, the length scale
+  // for positions. rtol |y| is no tolerance for unknowns near zero (twist
+  // angles, omega after a fold, coordinates near the origin, such as the
+  // heights of a flat linkage), so atol alone sets how accurately IDA
+  // follows them. 1e-6 held those to micro-radians and took 1.2-2.7x the
+  // steps of 1e-4 (bench, subdivision 8, 2 threads: saddle sample 71 -> 39
+  // steps, grid 27 -> 15, manta_ray 58 -> 30, hourglass 52 -> 29, largest
+  // 31 -> 22, uniform_linkage 119 -> 87); 3e-4 was about as good, and
+  // 1e-3 rejected many steps (E + K rising) on uniform_linkage under
+  // gravity. Only hyperboloid_open under gravity, which Newton does not
+  // solve either, took more (1649 -> 2572).
+  double absolute_tolerance = 1e-4;
   double initial_step = 0.0;  // 0: IDA's estimate
   ShiftOptions shift;         // for the damping estimate at an indefinite start
 };
