@@ -422,8 +422,10 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         y = as_eigen(integrator.y.get());
         // IDA's last Newton correction lands on a y it never evaluated. When
         // that y is invalid (a rod's terminal edge through its joint, say),
-        // the step is taken again, shorter, as a rejected step.
-        if (evaluator.move_to(y.data()) != 0) {
+        // the step is taken again, shorter, as a rejected step. The energy
+        // there comes from the same pass as the move.
+        double step_energy = 0.0;
+        if (evaluator.energy_at(y.data(), &step_energy) != 0) {
           evaluator.rethrow_if_fatal();
           if (!retry_shorter(
                   h, "the objective rejects the accepted state (" + evaluator.last_message() + ")"))
@@ -435,7 +437,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         report.step = result.steps;
         report.time = t;
         report.step_size = h;
-        report.energy = objective.energy();
+        report.energy = step_energy;
         report.kinetic_energy = kinetic(y);
         report.gradient_measure = weighted_max_norm(weights, evaluator.gradient());
         const double total = report.energy + report.kinetic_energy;

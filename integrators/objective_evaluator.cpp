@@ -10,7 +10,7 @@ namespace xshell {
 void ObjectiveEvaluator::sync() {
   position_ = objective_.get();
   known_ = true;
-  gradient_valid_ = false;
+  gradient_valid_ = energy_valid_ = false;
 }
 
 bool ObjectiveEvaluator::is_at(const Eigen::Ref<const Eigen::VectorXd>& q) const {
@@ -20,20 +20,24 @@ bool ObjectiveEvaluator::is_at(const Eigen::Ref<const Eigen::VectorXd>& q) const
 void ObjectiveEvaluator::move_to(const Eigen::Ref<const Eigen::VectorXd>& q) {
   if (is_at(q)) return;
   known_ = false;
-  gradient_valid_ = false;
+  gradient_valid_ = energy_valid_ = false;
   objective_.set(q);
   position_ = q;
   known_ = true;
 }
 
 double ObjectiveEvaluator::energy_at(const Eigen::Ref<const Eigen::VectorXd>& q) {
-  if (is_at(q)) return objective_.energy();
-  known_ = false;
-  gradient_valid_ = false;
-  const double energy = objective_.set_and_energy(q);
-  position_ = q;
-  known_ = true;
-  return energy;
+  if (is_at(q)) {
+    if (!energy_valid_) energy_ = objective_.energy();
+  } else {
+    known_ = false;
+    gradient_valid_ = energy_valid_ = false;
+    energy_ = objective_.set_and_energy(q);
+    position_ = q;
+    known_ = true;
+  }
+  energy_valid_ = true;
+  return energy_;
 }
 
 const Eigen::VectorXd& ObjectiveEvaluator::gradient() {
@@ -47,6 +51,15 @@ const Eigen::VectorXd& ObjectiveEvaluator::gradient() {
 int ObjectiveEvaluator::move_to(const double* q) {
   try {
     move_to(Eigen::Map<const Eigen::VectorXd>(q, size()));
+    return 0;
+  } catch (...) {
+    return fail_with_current_exception();
+  }
+}
+
+int ObjectiveEvaluator::energy_at(const double* q, double* energy) {
+  try {
+    *energy = energy_at(Eigen::Map<const Eigen::VectorXd>(q, size()));
     return 0;
   } catch (...) {
     return fail_with_current_exception();

@@ -42,7 +42,8 @@ class ObjectiveEvaluator {
   Eigen::VectorXd position() const { return known_ ? position_ : objective_.get(); }
   // The gradient at the current position (cached until the next move).
   const Eigen::VectorXd& gradient();
-  // Moves to q (as move_to) and returns the energy there.
+  // Moves to q (as move_to) and returns the energy there, computed in the
+  // same pass as the move when it moves (cached until the next move).
   double energy_at(const Eigen::Ref<const Eigen::VectorXd>& q);
 
   // Callback helpers: move to q, then copy the gradient into g. Return 0,
@@ -50,6 +51,8 @@ class ObjectiveEvaluator {
   int gradient_at(const double* q, double* g);
   // Moves to q only. Same return codes.
   int move_to(const double* q);
+  // Moves to q and stores the energy there (as energy_at). Same return codes.
+  int energy_at(const double* q, double* energy);
 
   // Failure bookkeeping, reset by clear_failures().
   void record(EvaluationFailure failure, std::string message);
@@ -71,6 +74,8 @@ class ObjectiveEvaluator {
   bool known_ = false;
   Eigen::VectorXd gradient_;
   bool gradient_valid_ = false;
+  double energy_ = 0.0;
+  bool energy_valid_ = false;
 
   EvaluationFailure last_failure_ = EvaluationFailure::None;
   std::string last_message_;
