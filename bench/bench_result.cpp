@@ -12,7 +12,8 @@ const char* kColumns =
     "newton_iterations,solve_s,status,gradient_measure,peak_rss_mb,hessian_cpu_ms,factorization_cpu_ms,"
     "iteration_cpu_ms,iteration_over_factorizations_cpu,dynamics_steps,dynamics_s,dynamics_status,"
     "kinetic_iterations,kinetic_s,kinetic_status,solve_hessian_ms,solve_factorization_ms,solve_rest_ms,"
-    "hessian_1thread_ms,hessian_speedup,iteration_over_solve_factorizations,newton_median_s";
+    "hessian_1thread_ms,hessian_speedup,iteration_over_solve_factorizations,newton_median_s,"
+    "comparison_newton_iterations,comparison_newton_status";
 
 std::string to_csv(const BenchResult& r) {
   std::ostringstream o;
@@ -26,7 +27,7 @@ std::string to_csv(const BenchResult& r) {
     << r.dynamics_s << ',' << r.dynamics_status << ',' << r.kinetic_iterations << ',' << r.kinetic_s << ','
     << r.kinetic_status << ',' << r.solve_hessian_ms << ',' << r.solve_factorization_ms << ',' << r.solve_rest_ms
     << ',' << r.hessian_1thread_ms << ',' << r.hessian_speedup << ',' << r.iteration_over_solve_factorizations
-    << ',' << r.newton_median_s;
+    << ',' << r.newton_median_s << ',' << r.comparison_newton_iterations << ',' << r.comparison_newton_status;
   return o.str();
 }
 
@@ -35,7 +36,7 @@ BenchResult from_csv(const std::string& line) {
   std::stringstream in(line);
   for (std::string item; std::getline(in, item, ',');) f.push_back(item);
   BenchResult r;
-  if (f.size() != 36) {
+  if (f.size() != 36 && f.size() != 38) {  // 36: written before the comparison's Newton columns
     r.status = "failed";
     return r;
   }
@@ -76,6 +77,10 @@ BenchResult from_csv(const std::string& line) {
   r.hessian_speedup = d(f[33]);
   r.iteration_over_solve_factorizations = d(f[34]);
   r.newton_median_s = d(f[35]);
+  if (f.size() == 38) {
+    r.comparison_newton_iterations = std::stol(f[36]);
+    r.comparison_newton_status = f[37];
+  }
   return r;
 }
 

@@ -26,6 +26,11 @@ struct BenchResult {
   long dynamics_steps = -1, kinetic_iterations = -1;
   double dynamics_s = NAN, kinetic_s = NAN, newton_median_s = NAN;
   std::string dynamics_status = "skipped", kinetic_status = "skipped";
+  // Those Newton solves may take up to 5000 iterations (the solve above
+  // stops at 100), so that a hard case still gives a ratio: their
+  // iterations and status (a ratio to a failed solve means nothing).
+  long comparison_newton_iterations = -1;
+  std::string comparison_newton_status = "skipped";
   // Inside the solve, medians over its iterations: Hessian assembly, the
   // numeric factorizations, and everything else (evaluations, line search,
   // solves, rebase, bookkeeping).
