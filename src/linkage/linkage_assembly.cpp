@@ -24,6 +24,19 @@ int thread_count() {
 #endif
 }
 
+// Chunk of a dynamically scheduled loop over count items: at most
+// `largest`, and small enough that every thread of the team gets about
+// eight chunks (a small linkage's 40 segments in chunks of 8 left one of
+// two threads with 3 chunks and the other with 2).
+int chunk_size(int count, int largest) {
+#ifdef _OPENMP
+  const int threads = omp_get_num_threads();
+#else
+  const int threads = 1;
+#endif
+  return std::max(1, std::min(largest, count / (8 * threads)));
+}
+
 int thread_index() {
 #ifdef _OPENMP
   return omp_get_thread_num();
@@ -531,9 +544,10 @@ void LinkageAssembly::gradient(const RodLinkage& linkage, const std::vector<Eige
   // overhead); small linkages stay serial.
 #pragma omp parallel if (ns >= kMinParallelSegments)
   {
-#pragma omp for schedule(dynamic, 16)
+    const int joint_chunk = chunk_size(nj, 16), segment_chunk = chunk_size(ns, 8);
+#pragma omp for schedule(dynamic, joint_chunk)
     for (int j = 0; j < nj; ++j) joint_geometry_jacobian(linkage.joint(j), joint_geometry_[j]);
-#pragma omp for schedule(dynamic, 8)
+#pragma omp for schedule(dynamic, segment_chunk)
     for (int s = 0; s < ns; ++s) {
       Scratch& w = scratch_for_thread();
       local_derivatives(linkage, s, forces, false, w);
@@ -579,9 +593,10 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
   const int ns = static_cast<int>(plans_.size());
 #pragma omp parallel if (ns >= kMinParallelSegments)
   {
-#pragma omp for schedule(dynamic, 16)
+    const int joint_chunk = chunk_size(nj, 16), segment_chunk = chunk_size(ns, 8);
+#pragma omp for schedule(dynamic, joint_chunk)
     for (int j = 0; j < nj; ++j) joint_geometry_derivatives(linkage.joint(j), joint_geometry_[j]);
-#pragma omp for schedule(dynamic, 8)
+#pragma omp for schedule(dynamic, segment_chunk)
     for (int s = 0; s < ns; ++s) {
       Scratch& w = scratch_for_thread();
       local_derivatives(linkage, s, forces, true, w);
