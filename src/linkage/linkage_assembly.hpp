@@ -16,8 +16,8 @@
 // nonzero, fixed unknowns dropped), and for every local entry the value slot
 // it adds to. Each evaluation then
 //   1. computes every segment's local gradient / Hessian in parallel
-//      (OpenMP, dynamic schedule, per-thread scratch: no allocation), writing
-//      each one into its own range of a contribution buffer, and
+//      (OpenMP, per-thread scratch: no allocation), writing each one into
+//      its own range of a contribution buffer, and
 //   2. sums the contributions of every global entry in a fixed order (the
 //      segments' order), also in parallel.
 // So the result does not depend on the number of threads, bit for bit.
