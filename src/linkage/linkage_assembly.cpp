@@ -22,6 +22,10 @@ int thread_count() {
 #endif
 }
 
+// Joints are taken by pairs: one costs about a microsecond, a segment
+// several.
+constexpr int kJointChunk = 2;
+
 int thread_index() {
 #ifdef _OPENMP
   return omp_get_thread_num();
@@ -329,25 +333,24 @@ void LinkageAssembly::gradient(const RodLinkage& linkage, const std::vector<Eige
   const int nj = linkage.num_joints();
   joint_geometry_.resize(nj);
   // One parallel region per evaluation (its fork and barriers are the
-  // overhead); small linkages stay serial. Static schedules: every thread
-  // gets the same joints and segments, in consecutive ranges, at every
-  // call, so the rods, geometry and value slots it writes stay in its own
-  // cache. Segments cost nearly the same (equal subdivisions; one joint or
-  // two). Dynamic schedules handed them to either thread at random and
-  // paid for the cache lines moving between cores: a 40-segment sample's
-  // Hessian was 1.65x faster on 2 threads than on 1, and is 1.70-1.77x
-  // with these.
+  // overhead); small linkages stay serial. Joints and segments go to the
+  // threads in the same ranges at every call (affine_loop.hpp).
 #pragma omp parallel if (ns >= kMinParallelSegments)
   {
-#pragma omp for schedule(static)
-    for (int j = 0; j < nj; ++j) joint_geometry_jacobian(linkage.joint(j), joint_geometry_[j]);
-#pragma omp for schedule(static)
-    for (int s = 0; s < ns; ++s) {
+#pragma omp single
+    {
+      joint_loop_.reset(nj);
+      segment_loop_.reset(ns);
+    }
+    joint_loop_.run(kJointChunk, [&](int j) { joint_geometry_jacobian(linkage.joint(j), joint_geometry_[j]); });
+#pragma omp barrier
+    segment_loop_.run(1, [&](int s) {
       Scratch& w = scratch_for_thread();
       local_derivatives(linkage, s, forces, false, w);
       std::copy(w.local_gradient.begin(), w.local_gradient.begin() + plans_[s].size(),
                 gradient_contributions_.begin() + plans_[s].gradient_begin);
-    }
+    });
+#pragma omp barrier
     sum_gradient(out);
   }
 }
@@ -387,10 +390,14 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
   const int ns = static_cast<int>(plans_.size());
 #pragma omp parallel if (ns >= kMinParallelSegments)
   {
-#pragma omp for schedule(static)
-    for (int j = 0; j < nj; ++j) joint_geometry_derivatives(linkage.joint(j), joint_geometry_[j]);
-#pragma omp for schedule(static)
-    for (int s = 0; s < ns; ++s) {
+#pragma omp single
+    {
+      joint_loop_.reset(nj);
+      segment_loop_.reset(ns);
+    }
+    joint_loop_.run(kJointChunk, [&](int j) { joint_geometry_derivatives(linkage.joint(j), joint_geometry_[j]); });
+#pragma omp barrier
+    segment_loop_.run(1, [&](int s) {
       Scratch& w = scratch_for_thread();
       local_derivatives(linkage, s, forces, true, w);
       const SegmentPlan& plan = plans_[s];
@@ -403,7 +410,8 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
       if (gradient)
         std::copy(w.local_gradient.begin(), w.local_gradient.begin() + plan.size(),
                   gradient_contributions_.begin() + plan.gradient_begin);
-    }
+    });
+#pragma omp barrier
 #pragma omp for schedule(static)
     for (long k = 0; k < shared; ++k) {
       double sum = 0.0;

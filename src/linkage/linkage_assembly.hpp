@@ -28,6 +28,7 @@
 #include <array>
 #include <vector>
 
+#include "affine_loop.hpp"
 #include "joint_derivatives.hpp"
 #include "rod_linkage.hpp"
 
@@ -110,6 +111,7 @@ class LinkageAssembly {
   std::vector<double> hessian_contributions_, gradient_contributions_;
   std::vector<Scratch> scratch_;
   std::vector<JointGeometryDerivatives> joint_geometry_;  // per joint, for the gradient or Hessian
+  AffineLoop joint_loop_, segment_loop_;
   // The matrix hessian() wrote last (its pattern is pattern_ unless changed since).
   const Eigen::SparseMatrix<double>* last_output_ = nullptr;
   const double* last_values_ = nullptr;
