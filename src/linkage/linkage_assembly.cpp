@@ -61,7 +61,6 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
   std::vector<Eigen::Triplet<double>> pattern_entries;
   std::vector<std::array<int, 2>> contribution_entry;  // (free row, free column) per Hessian contribution
   std::vector<std::vector<int>> kept_entries(ns);       // per segment, its local entries (column-major index)
-  long gradient_count = 0;
   for (int s = 0; s < ns; ++s) {
     const ElasticRod& rod = linkage.segment(s);
     const SegmentTopology& seg = linkage.topology().segments[s];
@@ -95,8 +94,6 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
     }
     max_rod_dofs_ = std::max(max_rod_dofs_, rod.num_dofs());
     max_local_ = std::max(max_local_, plan.size());
-    plan.gradient_begin = gradient_count;
-    gradient_count += plan.size();
 
     // Structure of the local Hessian from the rod's: free-free as is; a
     // free row touching any controlled variable of a joint couples to all 9
@@ -205,15 +202,44 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
   }
   hessian_contributions_.assign(shared_count, 0.0);
 
-  gradient_sources_begin_.assign(num_dofs_ + 1, 0);
+  // The gradient likewise: an unknown of one segment alone (its interior
+  // nodes and thetas) is written by that segment; a joint's, summed.
+  std::vector<int> sources_of_dof(num_dofs_, 0);
   for (const SegmentPlan& plan : plans_)
-    for (int r : plan.global) ++gradient_sources_begin_[r + 1];
-  for (int k = 0; k < num_dofs_; ++k) gradient_sources_begin_[k + 1] += gradient_sources_begin_[k];
-  gradient_sources_.resize(gradient_count);
+    for (int r : plan.global) ++sources_of_dof[r];
+  std::vector<long> shared_dof_index(num_dofs_, -1);
+  for (int k = 0; k < num_dofs_; ++k)
+    if (sources_of_dof[k] != 1) {
+      shared_dof_index[k] = static_cast<long>(shared_dofs_.size());
+      shared_dofs_.push_back(k);
+    }
+  gradient_sources_begin_.assign(shared_dofs_.size() + 1, 0);
+  for (size_t i = 0; i < shared_dofs_.size(); ++i)
+    gradient_sources_begin_[i + 1] = gradient_sources_begin_[i] + sources_of_dof[shared_dofs_[i]];
+  gradient_sources_.resize(gradient_sources_begin_.back());
   fill.assign(gradient_sources_begin_.begin(), gradient_sources_begin_.end() - 1);
-  for (const SegmentPlan& plan : plans_)
-    for (int i = 0; i < plan.size(); ++i) gradient_sources_[fill[plan.global[i]]++] = plan.gradient_begin + i;
-  gradient_contributions_.assign(gradient_count, 0.0);
+  long gradient_shared_count = 0;
+  for (SegmentPlan& plan : plans_) {
+    plan.gradient_begin = gradient_shared_count;
+    for (int i = 0; i < plan.size(); ++i) {
+      const int r = plan.global[i];
+      if (shared_dof_index[r] < 0) {
+        append(plan.gradient_direct_runs, i, r);
+      } else {
+        append(plan.gradient_shared_runs, i, gradient_shared_count - plan.gradient_begin);
+        gradient_sources_[fill[shared_dof_index[r]]++] = gradient_shared_count++;
+      }
+    }
+  }
+  gradient_contributions_.assign(gradient_shared_count, 0.0);
+}
+
+void LinkageAssembly::store_gradient(const SegmentPlan& plan, const double* local, double* out) {
+  double* target = gradient_contributions_.data() + plan.gradient_begin;
+  for (const CopyRun& run : plan.gradient_shared_runs)
+    for (int i = 0; i < run.length; ++i) target[run.target + i] = local[run.first + i];
+  for (const CopyRun& run : plan.gradient_direct_runs)
+    for (int i = 0; i < run.length; ++i) out[run.target + i] = local[run.first + i];
 }
 
 bool LinkageAssembly::matches(const RodLinkage& linkage, const std::vector<int>& free_position) const {
@@ -347,8 +373,7 @@ void LinkageAssembly::gradient(const RodLinkage& linkage, const std::vector<Eige
     segment_loop_.run(1, [&](int s) {
       Scratch& w = scratch_for_thread();
       local_derivatives(linkage, s, forces, false, w);
-      std::copy(w.local_gradient.begin(), w.local_gradient.begin() + plans_[s].size(),
-                gradient_contributions_.begin() + plans_[s].gradient_begin);
+      store_gradient(plans_[s], w.local_gradient.data(), out.data());
     });
 #pragma omp barrier
     sum_gradient(out);
@@ -356,12 +381,13 @@ void LinkageAssembly::gradient(const RodLinkage& linkage, const std::vector<Eige
 }
 
 void LinkageAssembly::sum_gradient(Eigen::VectorXd& out) const {
+  const long shared = static_cast<long>(shared_dofs_.size());
 #pragma omp for schedule(static)
-  for (int k = 0; k < num_dofs_; ++k) {
+  for (long k = 0; k < shared; ++k) {
     double sum = 0.0;
     for (long i = gradient_sources_begin_[k]; i < gradient_sources_begin_[k + 1]; ++i)
       sum += gradient_contributions_[gradient_sources_[i]];
-    out[k] = sum;
+    out[shared_dofs_[k]] = sum;
   }
 }
 
@@ -407,9 +433,7 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
         for (int i = 0; i < run.length; ++i) target[run.target + i] = local[run.first + i];
       for (const CopyRun& run : plan.direct_runs)
         for (int i = 0; i < run.length; ++i) values[run.target + i] = local[run.first + i];
-      if (gradient)
-        std::copy(w.local_gradient.begin(), w.local_gradient.begin() + plan.size(),
-                  gradient_contributions_.begin() + plan.gradient_begin);
+      if (gradient) store_gradient(plan, w.local_gradient.data(), gradient->data());
     });
 #pragma omp barrier
 #pragma omp for schedule(static)

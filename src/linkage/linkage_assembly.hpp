@@ -16,9 +16,10 @@
 // nonzero, fixed unknowns dropped), and for every local entry the value slot
 // it adds to. Each evaluation then
 //   1. computes every segment's local gradient / Hessian in parallel
-//      (OpenMP, per-thread scratch: no allocation), writing each one into
+//      (OpenMP, per-thread scratch: no allocation), writing the entries no
+//      other segment adds to straight to their places, and the others into
 //      its own range of a contribution buffer, and
-//   2. sums the contributions of every global entry in a fixed order (the
+//   2. sums the contributions of every shared entry in a fixed order (the
 //      segments' order), also in parallel.
 // So the result does not depend on the number of threads, bit for bit.
 #pragma once
@@ -78,7 +79,12 @@ class LinkageAssembly {
     std::vector<CopyRun> shared_runs;
     long hessian_begin = 0;
     std::vector<CopyRun> direct_runs;
-    long gradient_begin = 0;                     // local gradient's range in its buffer
+    // Local gradient entries the same way: those of joint unknowns to the
+    // gradient's contribution buffer (from gradient_begin), the others
+    // straight to the gradient.
+    std::vector<CopyRun> gradient_shared_runs;
+    long gradient_begin = 0;
+    std::vector<CopyRun> gradient_direct_runs;
     int size() const { return static_cast<int>(global.size()); }
   };
   // Per-thread work space, sized once for the largest segment and viewed
@@ -92,8 +98,12 @@ class LinkageAssembly {
   // Local gradient (and Hessian) of segment s into scratch.
   void local_derivatives(const RodLinkage& linkage, int s, const std::vector<Eigen::VectorXd>* forces,
                          bool with_hessian, Scratch& scratch) const;
-  // Sums the gradient contributions into out (num_dofs_): a worksharing loop
-  // inside the caller's parallel region.
+  // Copies segment `plan`'s local gradient to the contribution buffer and to
+  // out (the gradient, num_dofs_).
+  void store_gradient(const SegmentPlan& plan, const double* local, double* out);
+  // Sums the gradient contributions into the entries of out (num_dofs_)
+  // that several segments share: a worksharing loop inside the caller's
+  // parallel region.
   void sum_gradient(Eigen::VectorXd& out) const;
   Scratch& scratch_for_thread();
   void prepare_scratch();
@@ -103,8 +113,10 @@ class LinkageAssembly {
   std::vector<int> free_position_;
   std::vector<SegmentPlan> plans_;
   Eigen::SparseMatrix<double> pattern_;
-  // Gather lists: global entry k (of the gradient, or shared_slots_[k] of
-  // the Hessian) sums contributions sources[begin[k]..begin[k+1]).
+  // Gather lists: global entry k (shared_dofs_[k] of the gradient, or
+  // shared_slots_[k] of the Hessian) sums contributions
+  // sources[begin[k]..begin[k+1]).
+  std::vector<int> shared_dofs_;
   std::vector<long> shared_slots_;
   std::vector<long> hessian_sources_begin_, hessian_sources_;
   std::vector<long> gradient_sources_begin_, gradient_sources_;
