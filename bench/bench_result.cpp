@@ -13,7 +13,8 @@ const char* kColumns =
     "iteration_cpu_ms,iteration_over_factorizations_cpu,dynamics_steps,dynamics_s,dynamics_status,"
     "kinetic_iterations,kinetic_s,kinetic_status,solve_hessian_ms,solve_factorization_ms,solve_rest_ms,"
     "hessian_1thread_ms,hessian_speedup,iteration_over_solve_factorizations,newton_median_s,"
-    "comparison_newton_iterations,comparison_newton_status";
+    "comparison_newton_iterations,comparison_newton_status,hessian_slowest_core_ms,hessian_fastest_core_ms,"
+    "hessian_speedup_ceiling";
 
 std::string to_csv(const BenchResult& r) {
   std::ostringstream o;
@@ -27,7 +28,8 @@ std::string to_csv(const BenchResult& r) {
     << r.dynamics_s << ',' << r.dynamics_status << ',' << r.kinetic_iterations << ',' << r.kinetic_s << ','
     << r.kinetic_status << ',' << r.solve_hessian_ms << ',' << r.solve_factorization_ms << ',' << r.solve_rest_ms
     << ',' << r.hessian_1thread_ms << ',' << r.hessian_speedup << ',' << r.iteration_over_solve_factorizations
-    << ',' << r.newton_median_s << ',' << r.comparison_newton_iterations << ',' << r.comparison_newton_status;
+    << ',' << r.newton_median_s << ',' << r.comparison_newton_iterations << ',' << r.comparison_newton_status
+    << ',' << r.hessian_slowest_core_ms << ',' << r.hessian_fastest_core_ms << ',' << r.hessian_speedup_ceiling;
   return o.str();
 }
 
@@ -36,7 +38,8 @@ BenchResult from_csv(const std::string& line) {
   std::stringstream in(line);
   for (std::string item; std::getline(in, item, ',');) f.push_back(item);
   BenchResult r;
-  if (f.size() != 36 && f.size() != 38) {  // 36: written before the comparison's Newton columns
+  // 36: written before the comparison's Newton columns; 38: before the cores' columns.
+  if (f.size() != 36 && f.size() != 38 && f.size() != 41) {
     r.status = "failed";
     return r;
   }
@@ -77,9 +80,14 @@ BenchResult from_csv(const std::string& line) {
   r.hessian_speedup = d(f[33]);
   r.iteration_over_solve_factorizations = d(f[34]);
   r.newton_median_s = d(f[35]);
-  if (f.size() == 38) {
+  if (f.size() >= 38) {
     r.comparison_newton_iterations = std::stol(f[36]);
     r.comparison_newton_status = f[37];
+  }
+  if (f.size() >= 41) {
+    r.hessian_slowest_core_ms = d(f[38]);
+    r.hessian_fastest_core_ms = d(f[39]);
+    r.hessian_speedup_ceiling = d(f[40]);
   }
   return r;
 }

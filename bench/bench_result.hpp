@@ -41,6 +41,13 @@ struct BenchResult {
   // The solve's iterations over the factorizations they performed, both as
   // timed inside the solve (cold caches and all).
   double iteration_over_solve_factorizations = NAN;
+  // Hessian assembly on one thread pinned to each core in turn (the first
+  // `threads` cores the process may use, warm caches): the slowest and
+  // fastest, and the speedup over the fastest core that perfect balance
+  // over all of them would give, sum_c t_fastest / t_c. A virtual
+  // machine's cores need not be equally fast: with one at 0.8 of the
+  // other's speed, 2 threads are at most 1.8x faster than the faster core.
+  double hessian_slowest_core_ms = NAN, hessian_fastest_core_ms = NAN, hessian_speedup_ceiling = NAN;
 };
 
 // The CSV header, and a result as one line of it (without newline).

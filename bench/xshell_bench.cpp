@@ -25,6 +25,7 @@
 //                [--samples all|none] [--csv FILE] [--data DIR]
 #include <CLI/CLI.hpp>
 #include <dlfcn.h>
+#include <sched.h>
 #include <sys/resource.h>
 #include <time.h>
 #include <sys/wait.h>
@@ -104,6 +105,41 @@ double cpu_seconds() {
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
+
+// The first `count` cores the process may run on (fewer when it may use
+// fewer).
+std::vector<int> allowed_cores(int count) {
+  std::vector<int> cores;
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) != 0) return cores;
+  for (int c = 0; c < CPU_SETSIZE && static_cast<int>(cores.size()) < count; ++c)
+    if (CPU_ISSET(c, &set)) cores.push_back(c);
+  return cores;
+}
+
+// Keeps the calling thread on one core while it lives, then restores the
+// cores it had.
+class PinnedThread {
+ public:
+  explicit PinnedThread(int core) {
+    CPU_ZERO(&saved_);
+    if (sched_getaffinity(0, sizeof saved_, &saved_) != 0) return;
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(core, &one);
+    pinned_ = sched_setaffinity(0, sizeof one, &one) == 0;
+  }
+  ~PinnedThread() {
+    if (pinned_) sched_setaffinity(0, sizeof saved_, &saved_);
+  }
+  PinnedThread(const PinnedThread&) = delete;
+  PinnedThread& operator=(const PinnedThread&) = delete;
+
+ private:
+  cpu_set_t saved_;
+  bool pinned_ = false;
+};
 
 // Median wall time (ms) of reps runs of f; with cpu_ms, also the median CPU time.
 template <class F>
@@ -262,7 +298,22 @@ BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
   r.hessian_ms = median_ms(reps, assemble_hessian, &r.hessian_cpu_ms);
 #ifdef _OPENMP
   if (r.threads > 1) {
+    const std::vector<int> cores = allowed_cores(r.threads);
+    // One thread pinned to each core in turn, after an untimed call that
+    // brings the data into that core's cache; then, apart from these (a
+    // worker idle for several calls falls asleep, and waking it costs the
+    // next parallel call), 1 thread and all alternately.
+    std::vector<std::vector<double>> on_core(cores.size());
+    omp_set_num_threads(1);
+    for (int i = 0; i < reps; ++i)
+      for (size_t c = 0; c < cores.size(); ++c) {
+        PinnedThread pin(cores[c]);
+        assemble_hessian();
+        on_core[c].push_back(median_ms(1, assemble_hessian));
+      }
     std::vector<double> one, all;
+    omp_set_num_threads(r.threads);
+    assemble_hessian();
     for (int i = 0; i < reps; ++i) {
       omp_set_num_threads(1);
       one.push_back(median_ms(1, assemble_hessian));
@@ -271,6 +322,14 @@ BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
     }
     r.hessian_1thread_ms = median(one);
     r.hessian_speedup = median(one) / median(all);
+    if (cores.size() == static_cast<size_t>(r.threads)) {
+      std::vector<double> ms;
+      for (const std::vector<double>& t : on_core) ms.push_back(median(t));
+      r.hessian_slowest_core_ms = *std::max_element(ms.begin(), ms.end());
+      r.hessian_fastest_core_ms = *std::min_element(ms.begin(), ms.end());
+      r.hessian_speedup_ceiling = 0.0;
+      for (double t : ms) r.hessian_speedup_ceiling += r.hessian_fastest_core_ms / t;
+    }
   }
 #endif
   const Eigen::SparseMatrix<double> H = problem.free_hessian();
