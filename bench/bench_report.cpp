@@ -9,18 +9,20 @@
 namespace xshell::bench {
 
 void print_row_header() {
-  std::printf("%-24s %3s %2s %7s %9s %9s %9s %5s %5s %9s %9s %7s %5s %6s %6s %6s %4s %8s %7s  %s\n", "case", "n_s", "g",
-              "free", "H nnz", "E+grad", "Hessian", "H1/Hn", "ceil", "factor", "iter", "rest", "f/it", "it/f", "it/fs", "cpu", "its",
-              "solve", "MB", "status");
+  std::printf("%-24s %3s %2s %7s %9s %9s %9s %5s %5s %9s %9s %7s %5s %6s %6s %6s %4s %8s %4s %7s %7s  %s\n", "case", "n_s",
+              "g", "free", "H nnz", "E+grad", "Hessian", "H1/Hn", "ceil", "factor", "iter", "rest", "f/it", "it/f", "it/fs", "cpu",
+              "its", "solve", "dep", "dep s", "MB", "status");
 }
 
 void print_row(const BenchResult& r) {
-  std::printf("%-24s %3d %2s %7ld %9ld %9.2f %9.2f %5.2f %5.2f %9.2f %9.2f %7.2f %5.2f %6.2f %6.2f %6.2f %4ld %8.2f %7.0f  %s\n",
-              r.name.c_str(), r.subdivisions, r.gravity ? "g" : "-", r.free_unknowns, r.hessian_nonzeros,
-              r.energy_gradient_ms, r.hessian_ms, r.hessian_speedup, r.hessian_speedup_ceiling, r.factorization_ms, r.iteration_ms, r.solve_rest_ms,
-              r.factorizations_per_iteration, r.iteration_over_factorizations, r.iteration_over_solve_factorizations,
-              r.iteration_over_factorizations_cpu, r.iterations, r.solve_s,
-              r.peak_rss_mb, r.status.c_str());
+  std::printf(
+      "%-24s %3d %2s %7ld %9ld %9.2f %9.2f %5.2f %5.2f %9.2f %9.2f %7.2f %5.2f %6.2f %6.2f %6.2f %4ld %8.2f %4ld %7.2f %7.0f  "
+      "%s\n",
+      r.name.c_str(), r.subdivisions, r.gravity ? "g" : "-", r.free_unknowns, r.hessian_nonzeros, r.energy_gradient_ms,
+      r.hessian_ms, r.hessian_speedup, r.hessian_speedup_ceiling, r.factorization_ms, r.iteration_ms, r.solve_rest_ms,
+      r.factorizations_per_iteration, r.iteration_over_factorizations, r.iteration_over_solve_factorizations,
+      r.iteration_over_factorizations_cpu, r.iterations, r.solve_s, r.deployment_iterations, r.deployment_s, r.peak_rss_mb,
+      r.status.c_str());
   std::fflush(stdout);
 }
 

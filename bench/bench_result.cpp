@@ -14,7 +14,7 @@ const char* kColumns =
     "kinetic_iterations,kinetic_s,kinetic_status,solve_hessian_ms,solve_factorization_ms,solve_rest_ms,"
     "hessian_1thread_ms,hessian_speedup,iteration_over_solve_factorizations,newton_median_s,"
     "comparison_newton_iterations,comparison_newton_status,hessian_slowest_core_ms,hessian_fastest_core_ms,"
-    "hessian_speedup_ceiling";
+    "hessian_speedup_ceiling,deployment_iterations,deployment_s,deployment_status";
 
 std::string to_csv(const BenchResult& r) {
   std::ostringstream o;
@@ -29,7 +29,8 @@ std::string to_csv(const BenchResult& r) {
     << r.kinetic_status << ',' << r.solve_hessian_ms << ',' << r.solve_factorization_ms << ',' << r.solve_rest_ms
     << ',' << r.hessian_1thread_ms << ',' << r.hessian_speedup << ',' << r.iteration_over_solve_factorizations
     << ',' << r.newton_median_s << ',' << r.comparison_newton_iterations << ',' << r.comparison_newton_status
-    << ',' << r.hessian_slowest_core_ms << ',' << r.hessian_fastest_core_ms << ',' << r.hessian_speedup_ceiling;
+    << ',' << r.hessian_slowest_core_ms << ',' << r.hessian_fastest_core_ms << ',' << r.hessian_speedup_ceiling
+    << ',' << r.deployment_iterations << ',' << r.deployment_s << ',' << r.deployment_status;
   return o.str();
 }
 
@@ -38,8 +39,9 @@ BenchResult from_csv(const std::string& line) {
   std::stringstream in(line);
   for (std::string item; std::getline(in, item, ',');) f.push_back(item);
   BenchResult r;
-  // 36: written before the comparison's Newton columns; 38: before the cores' columns.
-  if (f.size() != 36 && f.size() != 38 && f.size() != 41) {
+  // 36: written before the comparison's Newton columns; 38: before the
+  // cores' columns; 41: before the deployment step's.
+  if (f.size() != 36 && f.size() != 38 && f.size() != 41 && f.size() != 44) {
     r.status = "failed";
     return r;
   }
@@ -88,6 +90,11 @@ BenchResult from_csv(const std::string& line) {
     r.hessian_slowest_core_ms = d(f[38]);
     r.hessian_fastest_core_ms = d(f[39]);
     r.hessian_speedup_ceiling = d(f[40]);
+  }
+  if (f.size() >= 44) {
+    r.deployment_iterations = std::stol(f[41]);
+    r.deployment_s = d(f[42]);
+    r.deployment_status = f[43];
   }
   return r;
 }

@@ -48,7 +48,17 @@ struct BenchResult {
   // machine's cores need not be equally fast: with one at 0.8 of the
   // other's speed, 2 threads are at most 1.8x faster than the faster core.
   double hessian_slowest_core_ms = NAN, hessian_fastest_core_ms = NAN, hessian_speedup_ceiling = NAN;
+  // One deployment step from the relaxed state: the average opening angle
+  // raised by kDeploymentStep radians, solved by constrained Newton to the
+  // same tolerance (deployment.hpp; the step's own iterations and time).
+  long deployment_iterations = -1;
+  double deployment_s = NAN;
+  std::string deployment_status = "skipped";
 };
+
+// The opening of the benchmark's deployment step, radians (the reference
+// implementation's designs deploy by about this much per step).
+constexpr double kDeploymentStep = 0.02;
 
 // The CSV header, and a result as one line of it (without newline).
 extern const char* kColumns;

@@ -50,7 +50,9 @@
 
 #include "bench_report.hpp"
 #include "bench_result.hpp"
+#include "integrators/average_constraint.hpp"
 #include "integrators/cholesky_solver.hpp"
+#include "integrators/deployment.hpp"
 #include "integrators/dynamics.hpp"
 #include "integrators/kinetic_damping.hpp"
 #include "integrators/linkage_objective.hpp"
@@ -269,6 +271,29 @@ void run_other_solvers(const BenchCase& c, const BenchSettings& settings, BenchR
   }
 }
 
+// One deployment step from the problem's (relaxed) state, into r.
+void deployment_step(LinkageProblem& problem, BenchResult& r) {
+  DeploymentPlan plan;
+  plan.average_angle = average_opening_angle(problem.linkage()) + kDeploymentStep;
+  plan.steps = 1;
+  DeploymentOptions options;
+  options.newton.gradient_tolerance = 1e-6;
+  options.newton.max_iterations = 100;
+  DeploymentResult result;
+  try {
+    result = deploy(problem, plan, options);
+  } catch (const std::invalid_argument&) {  // every opening angle fixed
+    r.deployment_status = "not_applicable";
+    return;
+  }
+  r.deployment_status = "failed";
+  if (result.steps.size() < 2) return;  // step 0 is the start's own solve
+  const DeploymentStep& step = result.steps.back();
+  r.deployment_iterations = step.iterations;
+  r.deployment_s = step.seconds;
+  if (result.completed()) r.deployment_status = step.stable ? "converged" : "converged_unstable";
+}
+
 BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
   const int reps = settings.reps;
   const bool solve = settings.solve;
@@ -378,6 +403,7 @@ BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
       r.iteration_cpu_ms = 1e3 * median(cpu);
       r.iteration_over_factorizations_cpu = 1e3 * total_cpu / (double(factorizations) * r.factorization_cpu_ms);
     }
+    if (result.converged()) deployment_step(problem, r);
     if (settings.solvers) run_other_solvers(c, settings, r);
   } else {
     r.status = "not_solved";
