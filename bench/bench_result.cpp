@@ -14,7 +14,7 @@ const char* kColumns =
     "kinetic_iterations,kinetic_s,kinetic_status,solve_hessian_ms,solve_factorization_ms,solve_rest_ms,"
     "hessian_1thread_ms,hessian_speedup,iteration_over_solve_factorizations,newton_median_s,"
     "comparison_newton_iterations,comparison_newton_status,hessian_slowest_core_ms,hessian_fastest_core_ms,"
-    "hessian_speedup_ceiling,deployment_iterations,deployment_s,deployment_status";
+    "hessian_speedup_ceiling,deployment_iterations,deployment_s,deployment_status,deployment_peak_rss_mb";
 
 std::string to_csv(const BenchResult& r) {
   std::ostringstream o;
@@ -30,7 +30,8 @@ std::string to_csv(const BenchResult& r) {
     << ',' << r.hessian_1thread_ms << ',' << r.hessian_speedup << ',' << r.iteration_over_solve_factorizations
     << ',' << r.newton_median_s << ',' << r.comparison_newton_iterations << ',' << r.comparison_newton_status
     << ',' << r.hessian_slowest_core_ms << ',' << r.hessian_fastest_core_ms << ',' << r.hessian_speedup_ceiling
-    << ',' << r.deployment_iterations << ',' << r.deployment_s << ',' << r.deployment_status;
+    << ',' << r.deployment_iterations << ',' << r.deployment_s << ',' << r.deployment_status << ','
+    << r.deployment_peak_rss_mb;
   return o.str();
 }
 
@@ -41,7 +42,7 @@ BenchResult from_csv(const std::string& line) {
   BenchResult r;
   // 36: written before the comparison's Newton columns; 38: before the
   // cores' columns; 41: before the deployment step's.
-  if (f.size() != 36 && f.size() != 38 && f.size() != 41 && f.size() != 44) {
+  if (f.size() != 36 && f.size() != 38 && f.size() != 41 && f.size() != 45) {
     r.status = "failed";
     return r;
   }
@@ -91,10 +92,11 @@ BenchResult from_csv(const std::string& line) {
     r.hessian_fastest_core_ms = d(f[39]);
     r.hessian_speedup_ceiling = d(f[40]);
   }
-  if (f.size() >= 44) {
+  if (f.size() >= 45) {
     r.deployment_iterations = std::stol(f[41]);
     r.deployment_s = d(f[42]);
     r.deployment_status = f[43];
+    r.deployment_peak_rss_mb = d(f[44]);
   }
   return r;
 }

@@ -19,7 +19,7 @@ struct BenchResult {
   long iterations = -1;
   double solve_s = NAN, gradient_measure = NAN;
   std::string status = "skipped";
-  double peak_rss_mb = NAN;
+  double peak_rss_mb = NAN;  // through the Newton relaxation (before the deployment step)
   // --solvers: the same relaxation by damped dynamics and kinetic damping;
   // dynamics_s is the median of repeated runs, alternating with Newton
   // solves whose median is newton_median_s (the ratio's denominator).
@@ -54,6 +54,7 @@ struct BenchResult {
   long deployment_iterations = -1;
   double deployment_s = NAN;
   std::string deployment_status = "skipped";
+  double deployment_peak_rss_mb = NAN;  // through the deployment step too
 };
 
 // The opening of the benchmark's deployment step, radians (the reference

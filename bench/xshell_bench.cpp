@@ -271,6 +271,13 @@ void run_other_solvers(const BenchCase& c, const BenchSettings& settings, BenchR
   }
 }
 
+// The process's peak resident memory so far, MB.
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // kilobytes on Linux
+}
+
 // One deployment step from the problem's (relaxed) state, into r.
 void deployment_step(LinkageProblem& problem, BenchResult& r) {
   DeploymentPlan plan;
@@ -287,6 +294,9 @@ void deployment_step(LinkageProblem& problem, BenchResult& r) {
     return;
   }
   r.deployment_status = "failed";
+  if (!result.completed())
+    std::fprintf(stderr, "%s, n_s %d: deployment step %s: %s\n", r.name.c_str(), r.subdivisions,
+                 to_string(result.status), result.reason.c_str());
   if (result.steps.size() < 2) return;  // step 0 is the start's own solve
   const DeploymentStep& step = result.steps.back();
   r.deployment_iterations = step.iterations;
@@ -403,14 +413,16 @@ BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
       r.iteration_cpu_ms = 1e3 * median(cpu);
       r.iteration_over_factorizations_cpu = 1e3 * total_cpu / (double(factorizations) * r.factorization_cpu_ms);
     }
-    if (result.converged()) deployment_step(problem, r);
+    r.peak_rss_mb = peak_rss_mb();
+    if (result.converged()) {
+      deployment_step(problem, r);
+      r.deployment_peak_rss_mb = peak_rss_mb();
+    }
     if (settings.solvers) run_other_solvers(c, settings, r);
   } else {
     r.status = "not_solved";
+    r.peak_rss_mb = peak_rss_mb();
   }
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  r.peak_rss_mb = usage.ru_maxrss / 1024.0;  // kilobytes on Linux
   return r;
 }
 
