@@ -234,12 +234,28 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
   gradient_contributions_.assign(gradient_shared_count, 0.0);
 }
 
-void LinkageAssembly::store_gradient(const SegmentPlan& plan, const double* local, double* out) {
-  double* target = gradient_contributions_.data() + plan.gradient_begin;
-  for (const CopyRun& run : plan.gradient_shared_runs)
+void LinkageAssembly::copy_runs(const std::vector<CopyRun>& runs, const double* local, double* target) {
+  for (const CopyRun& run : runs)
     for (int i = 0; i < run.length; ++i) target[run.target + i] = local[run.first + i];
-  for (const CopyRun& run : plan.gradient_direct_runs)
-    for (int i = 0; i < run.length; ++i) out[run.target + i] = local[run.first + i];
+}
+
+void LinkageAssembly::store_gradient(const SegmentPlan& plan, const double* local, double* out) {
+  copy_runs(plan.gradient_shared_runs, local, gradient_contributions_.data() + plan.gradient_begin);
+  copy_runs(plan.gradient_direct_runs, local, out);
+}
+
+template <class JointWork, class SegmentWork>
+void LinkageAssembly::joints_then_segments(int num_joints, int num_segments, JointWork&& joint_work,
+                                           SegmentWork&& segment_work) {
+#pragma omp single
+  {
+    joint_loop_.reset(num_joints);
+    segment_loop_.reset(num_segments);
+  }
+  joint_loop_.run(kJointChunk, joint_work);
+#pragma omp barrier
+  segment_loop_.run(1, segment_work);
+#pragma omp barrier
 }
 
 bool LinkageAssembly::matches(const RodLinkage& linkage, const std::vector<int>& free_position) const {
@@ -363,19 +379,13 @@ void LinkageAssembly::gradient(const RodLinkage& linkage, const std::vector<Eige
   // threads in the same ranges at every call (affine_loop.hpp).
 #pragma omp parallel if (ns >= kMinParallelSegments)
   {
-#pragma omp single
-    {
-      joint_loop_.reset(nj);
-      segment_loop_.reset(ns);
-    }
-    joint_loop_.run(kJointChunk, [&](int j) { joint_geometry_jacobian(linkage.joint(j), joint_geometry_[j]); });
-#pragma omp barrier
-    segment_loop_.run(1, [&](int s) {
-      Scratch& w = scratch_for_thread();
-      local_derivatives(linkage, s, forces, false, w);
-      store_gradient(plans_[s], w.local_gradient.data(), out.data());
-    });
-#pragma omp barrier
+    joints_then_segments(
+        nj, ns, [&](int j) { joint_geometry_jacobian(linkage.joint(j), joint_geometry_[j]); },
+        [&](int s) {
+          Scratch& w = scratch_for_thread();
+          local_derivatives(linkage, s, forces, false, w);
+          store_gradient(plans_[s], w.local_gradient.data(), out.data());
+        });
     sum_gradient(out);
   }
 }
@@ -416,26 +426,17 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
   const int ns = static_cast<int>(plans_.size());
 #pragma omp parallel if (ns >= kMinParallelSegments)
   {
-#pragma omp single
-    {
-      joint_loop_.reset(nj);
-      segment_loop_.reset(ns);
-    }
-    joint_loop_.run(kJointChunk, [&](int j) { joint_geometry_derivatives(linkage.joint(j), joint_geometry_[j]); });
-#pragma omp barrier
-    segment_loop_.run(1, [&](int s) {
-      Scratch& w = scratch_for_thread();
-      local_derivatives(linkage, s, forces, true, w);
-      const SegmentPlan& plan = plans_[s];
-      const double* local = w.local_hessian.data();  // column-major, plan.size() square
-      double* target = hessian_contributions_.data() + plan.hessian_begin;
-      for (const CopyRun& run : plan.shared_runs)
-        for (int i = 0; i < run.length; ++i) target[run.target + i] = local[run.first + i];
-      for (const CopyRun& run : plan.direct_runs)
-        for (int i = 0; i < run.length; ++i) values[run.target + i] = local[run.first + i];
-      if (gradient) store_gradient(plan, w.local_gradient.data(), gradient->data());
-    });
-#pragma omp barrier
+    joints_then_segments(
+        nj, ns, [&](int j) { joint_geometry_derivatives(linkage.joint(j), joint_geometry_[j]); },
+        [&](int s) {
+          Scratch& w = scratch_for_thread();
+          local_derivatives(linkage, s, forces, true, w);
+          const SegmentPlan& plan = plans_[s];
+          const double* local = w.local_hessian.data();  // column-major, plan.size() square
+          copy_runs(plan.shared_runs, local, hessian_contributions_.data() + plan.hessian_begin);
+          copy_runs(plan.direct_runs, local, values);
+          if (gradient) store_gradient(plan, w.local_gradient.data(), gradient->data());
+        });
 #pragma omp for schedule(static)
     for (long k = 0; k < shared; ++k) {
       double sum = 0.0;

@@ -98,6 +98,13 @@ class LinkageAssembly {
   // Local gradient (and Hessian) of segment s into scratch.
   void local_derivatives(const RodLinkage& linkage, int s, const std::vector<Eigen::VectorXd>* forces,
                          bool with_hessian, Scratch& scratch) const;
+  // target[run.target + i] = local[run.first + i] over the runs.
+  static void copy_runs(const std::vector<CopyRun>& runs, const double* local, double* target);
+  // Inside the caller's parallel region: joint_work(j) for every joint, a
+  // barrier, segment_work(s) for every segment, a barrier; each thread
+  // takes the same ranges at every call (affine_loop.hpp).
+  template <class JointWork, class SegmentWork>
+  void joints_then_segments(int num_joints, int num_segments, JointWork&& joint_work, SegmentWork&& segment_work);
   // Copies segment `plan`'s local gradient to the contribution buffer and to
   // out (the gradient, num_dofs_).
   void store_gradient(const SegmentPlan& plan, const double* local, double* out);
