@@ -24,10 +24,6 @@
 //                [--grids 4,8,14,25,44] [--no-solve] [--solvers] [--kinetic-limit N]
 //                [--samples all|none] [--csv FILE] [--data DIR]
 #include <CLI/CLI.hpp>
-#include <dlfcn.h>
-#include <sched.h>
-#include <sys/resource.h>
-#include <time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -48,6 +44,7 @@
 #include <omp.h>
 #endif
 
+#include "bench_measure.hpp"
 #include "bench_report.hpp"
 #include "bench_result.hpp"
 #include "integrators/average_constraint.hpp"
@@ -66,7 +63,6 @@ namespace {
 
 using namespace xshell;
 using namespace xshell::bench;
-using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
 
 struct BenchCase {
@@ -85,78 +81,6 @@ struct BenchSettings {
   bool solvers = false;
   long kinetic_limit = 200000;
 };
-
-// The file of the BLAS that CHOLMOD calls (where dsyrk_ resolves).
-std::string loaded_blas() {
-  void* symbol = dlsym(RTLD_DEFAULT, "dsyrk_");
-  Dl_info info{};
-  if (symbol == nullptr || dladdr(symbol, &info) == 0 || info.dli_fname == nullptr) return "unknown";
-  return info.dli_fname;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// Process CPU time (all threads), seconds.
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-// The first `count` cores the process may run on (fewer when it may use
-// fewer).
-std::vector<int> allowed_cores(int count) {
-  std::vector<int> cores;
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (sched_getaffinity(0, sizeof set, &set) != 0) return cores;
-  for (int c = 0; c < CPU_SETSIZE && static_cast<int>(cores.size()) < count; ++c)
-    if (CPU_ISSET(c, &set)) cores.push_back(c);
-  return cores;
-}
-
-// Keeps the calling thread on one core while it lives, then restores the
-// cores it had.
-class PinnedThread {
- public:
-  explicit PinnedThread(int core) {
-    CPU_ZERO(&saved_);
-    if (sched_getaffinity(0, sizeof saved_, &saved_) != 0) return;
-    cpu_set_t one;
-    CPU_ZERO(&one);
-    CPU_SET(core, &one);
-    pinned_ = sched_setaffinity(0, sizeof one, &one) == 0;
-  }
-  ~PinnedThread() {
-    if (pinned_) sched_setaffinity(0, sizeof saved_, &saved_);
-  }
-  PinnedThread(const PinnedThread&) = delete;
-  PinnedThread& operator=(const PinnedThread&) = delete;
-
- private:
-  cpu_set_t saved_;
-  bool pinned_ = false;
-};
-
-// Median wall time (ms) of reps runs of f; with cpu_ms, also the median CPU time.
-template <class F>
-double median_ms(int reps, F&& f, double* cpu_ms = nullptr) {
-  std::vector<double> t, c;
-  for (int i = 0; i < reps; ++i) {
-    const double cpu = cpu_seconds();
-    const Clock::time_point start = Clock::now();
-    f();
-    t.push_back(1e3 * std::chrono::duration<double>(Clock::now() - start).count());
-    c.push_back(1e3 * (cpu_seconds() - cpu));
-  }
-  if (cpu_ms) *cpu_ms = median(c);
-  return median(t);
-}
 
 // A regular grid of n x n crossings of straight rods (spacing 100 mm), each
 // rod running half a spacing past its last crossing to a free end, with the
@@ -269,13 +193,6 @@ void run_other_solvers(const BenchCase& c, const BenchSettings& settings, BenchR
     r.kinetic_s = result.seconds;
     r.kinetic_status = result.converged() ? "converged" : "failed";
   }
-}
-
-// The process's peak resident memory so far, MB.
-double peak_rss_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;  // kilobytes on Linux
 }
 
 // One deployment step from the problem's (relaxed) state, into r.
