@@ -7,8 +7,8 @@
 #include <system_error>
 
 #include "deployment_plot.hpp"
-#include "integrators/average_constraint.hpp"
-#include "integrators/deployment.hpp"
+#include "integrators/deployment/average_constraint.hpp"
+#include "integrators/deployment/deployment.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 

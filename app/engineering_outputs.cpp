@@ -1,6 +1,6 @@
 #include "engineering_outputs.hpp"
 
-#include "integrators/stability_analysis.hpp"
+#include "integrators/stability/stability_analysis.hpp"
 #include "io/engineering_json.hpp"
 #include "io/vtk/engineering_files.hpp"
 #include "io/vtk/joints_file.hpp"

@@ -8,7 +8,7 @@
 #include <functional>
 #include <random>
 
-namespace xshell::testing {
+namespace xshell::test {
 
 struct DifferenceReport {
   double max_abs_error = 0.0;
@@ -56,4 +56,4 @@ inline Eigen::VectorXd random_vector(Eigen::Index n, std::mt19937& rng, double a
   return v;
 }
 
-}  // namespace xshell::testing
+}  // namespace xshell::test

@@ -5,8 +5,10 @@
 #include <doctest/doctest.h>
 
 #include "reliability_support.hpp"
+#include "skip.hpp"
 
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 
@@ -189,10 +191,7 @@ TEST_CASE("bad input: an unreadable linkage file (mode 000)") {
   fs::permissions(dir / "locked.obj", fs::perms::none);
   write_text(dir / "run.json", config_with("locked.obj"));
   const CommandResult r = run_xshell_unprivileged("relax run.json", dir.path());
-  if (r.status == -2) {
-    MESSAGE("root without setpriv(1): the unreadable-file case cannot be checked here");
-    return;
-  }
+  if (r.status == -2) XSHELL_SKIP("root without setpriv(1): the unreadable-file case cannot be checked here");
   check_rejected(r, dir.path(), {"cannot open linkage file 'locked.obj'", "Permission denied"});
 }
 
@@ -216,10 +215,7 @@ TEST_CASE("bad input: an unreadable configuration file (mode 000)") {
   write_text(dir / "run.json", grid_config());
   fs::permissions(dir / "run.json", fs::perms::none);
   const CommandResult r = run_xshell_unprivileged("relax run.json", dir.path());
-  if (r.status == -2) {
-    MESSAGE("root without setpriv(1): the unreadable-file case cannot be checked here");
-    return;
-  }
+  if (r.status == -2) XSHELL_SKIP("root without setpriv(1): the unreadable-file case cannot be checked here");
   check_rejected(r, dir.path(), {"cannot open configuration file 'run.json'", "Permission denied"});
 }
 
@@ -474,10 +470,7 @@ TEST_CASE("bad output: a read-only output directory") {
   fs::permissions(dir / "locked", fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
                                       fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
   const CommandResult r = run_xshell_unprivileged("relax run.json", dir.path());
-  if (r.status == -2) {
-    MESSAGE("root without setpriv(1): the read-only case cannot be checked here");
-    return;
-  }
+  if (r.status == -2) XSHELL_SKIP("root without setpriv(1): the read-only case cannot be checked here");
   CAPTURE(r.errors);
   CHECK(r.status == 4);
   CHECK(contains(r.errors, "locked/out"));
@@ -542,3 +535,5 @@ TEST_CASE("bad input: --init with a missing, truncated or foreign file") {
   check_rejected(run_xshell("relax run.json --init folder.json", dir.path()), dir.path(),
                  {"folder.json: cannot read the state file: it is a folder"});
 }
+
+}  // namespace xshell::test

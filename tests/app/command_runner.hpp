@@ -12,7 +12,7 @@
 #include <sstream>
 #include <string>
 
-namespace xshell::testing {
+namespace xshell::test {
 
 namespace fs = std::filesystem;
 
@@ -69,4 +69,4 @@ inline std::string sample_config(const fs::path& out, const std::string& extra =
 })";
 }
 
-}  // namespace xshell::testing
+}  // namespace xshell::test

@@ -7,7 +7,8 @@
 
 #include "command_runner.hpp"
 
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 
@@ -227,3 +228,5 @@ TEST_CASE("relax: a deployment with edge-vector joints is refused, not run on th
   CHECK(r.status == 2);
   CHECK(r.errors.find("deployment: needs \"joints\": \"rotation\"") != std::string::npos);
 }
+
+}  // namespace xshell::test

@@ -8,8 +8,8 @@
 #include "io/obj_reader.hpp"
 #include "linkage/topology.hpp"
 
-using namespace xshell;
-using namespace xshell::testing;
+namespace xshell::test {
+
 using nlohmann::json;
 
 namespace {
@@ -162,3 +162,5 @@ TEST_CASE("relax: a rods entry or a displacement that does not apply exits 2 nam
   CHECK_FALSE(fs::exists(dir / "out" / "summary.json"));
   fs::remove_all(dir);
 }
+
+}  // namespace xshell::test

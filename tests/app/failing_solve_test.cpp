@@ -10,7 +10,8 @@
 
 #include "reliability_support.hpp"
 
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 
@@ -150,3 +151,5 @@ TEST_CASE("relax: free rigid motions that nothing pushes: a warning, converged, 
   CHECK(s["converged"] == true);
   CHECK(s["stable"] == false);  // a mechanism: it slides without any force
 }
+
+}  // namespace xshell::test

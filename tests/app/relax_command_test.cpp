@@ -7,7 +7,8 @@
 
 #include "command_runner.hpp"
 
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 extern char** environ;
 
@@ -188,3 +189,5 @@ TEST_CASE("relax: SIGINT writes the last state and an interrupted summary, and e
     }
   CHECK(files >= 4);
 }
+
+}  // namespace xshell::test

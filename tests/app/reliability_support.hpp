@@ -20,7 +20,7 @@
 
 extern char** environ;
 
-namespace xshell::testing {
+namespace xshell::test {
 
 // A fresh temporary directory, removed with everything in it at scope exit.
 class Scratch {
@@ -199,4 +199,4 @@ inline std::vector<std::string> temporary_files(const fs::path& dir) {
   return out;
 }
 
-}  // namespace xshell::testing
+}  // namespace xshell::test

@@ -9,7 +9,8 @@
 
 #include "reliability_support.hpp"
 
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 
@@ -173,3 +174,5 @@ TEST_CASE("interrupt: a closed stderr (SIGPIPE) does not stop a run before its o
   CHECK(read_json(dir / "out" / "summary.json")["converged"] == true);
   CHECK(check_outputs_complete(dir / "out") >= 6);
 }
+
+}  // namespace xshell::test

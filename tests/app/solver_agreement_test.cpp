@@ -9,7 +9,8 @@
 
 #include "app/command_runner.hpp"
 
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 
@@ -83,3 +84,5 @@ TEST_CASE("relax: damped dynamics reaches Newton's equilibrium of the sample, in
   CHECK(first["converged"] == true);
   check_same_equilibrium(newton, first);
 }
+
+}  // namespace xshell::test

@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include "integrators/linkage_objective.hpp"
-#include "integrators/newton.hpp"
+#include "integrators/common/linkage_objective.hpp"
+#include "integrators/newton/newton.hpp"
 #include "linkage/statics_problem.hpp"
 
-namespace xshell::testing {
+namespace xshell::test {
 
 // A straight rod of length 1 along x as a one-segment linkage, square
 // section of side w with E I = 1 (E = 12 / w^4), under `setup`.
@@ -48,4 +48,4 @@ inline NewtonResult relax(LinkageProblem& problem, double tolerance = 1e-9) {
   return result;
 }
 
-}  // namespace xshell::testing
+}  // namespace xshell::test

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-namespace xshell::testing {
+namespace xshell::test {
 
 struct ElasticaTip {
   double deflection = 0.0;  // v / L
@@ -49,4 +49,4 @@ inline ElasticaTip cantilever_elastica(double alpha) {
   return tip;
 }
 
-}  // namespace xshell::testing
+}  // namespace xshell::test

@@ -9,7 +9,7 @@
 #include "linkage/graph.hpp"
 #include "linkage/rod_linkage.hpp"
 
-namespace xshell::testing {
+namespace xshell::test {
 
 // n x n crossings 0.25 m apart in the plane z = 0, joined along x and y.
 inline LineGraph square_grid(int n) {
@@ -39,4 +39,4 @@ inline LinkageOptions lath_options(int subdivisions = 6) {
 // The corners of a roughly rectangular plan (linkage/graph.hpp).
 using xshell::corner_vertices;
 
-}  // namespace xshell::testing
+}  // namespace xshell::test

@@ -3,7 +3,7 @@
 //
 // The configuration is a vector x of dofs; some are pinned, the others are
 // the free unknowns q = x[free] in increasing dof order. Each term reads a
-// few dofs and returns a Jet (value, local gradient, local Hessian); the
+// few dofs and returns a Dual (value, local gradient, local Hessian); the
 // global gradient and Hessian are assembled here, in one place, with the
 // pattern fixed at construction (it includes the whole diagonal).
 #pragma once
@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "integrators/objective.hpp"
-#include "jet.hpp"
+#include "integrators/common/objective.hpp"
+#include "integrators/dual_vectors.hpp"
 
 namespace xshell::test {
 
@@ -30,15 +30,15 @@ struct Term {
   std::function<LocalEnergy(const Eigen::VectorXd& local)> evaluate;
 };
 
-// A term of N dofs from a generic energy formula f(std::array<Jet<N>, N>).
+// A term of N dofs from a generic energy formula f(std::array<Dual<N>, N>).
 template <int N, class Formula>
 Term make_term(const std::array<int, N>& dofs, Formula formula) {
   Term term;
   term.dofs.assign(dofs.begin(), dofs.end());
   term.evaluate = [formula](const Eigen::VectorXd& local) {
-    std::array<Jet<N>, N> x;
-    for (int i = 0; i < N; ++i) x[static_cast<size_t>(i)] = Jet<N>::variable(local[i], i);
-    const Jet<N> e = formula(x);
+    std::array<Dual<N>, N> x;
+    for (int i = 0; i < N; ++i) x[static_cast<size_t>(i)] = Dual<N>::variable(i, local[i]);
+    const Dual<N> e = formula(x);
     return LocalEnergy{e.v, e.g, e.h};
   };
   return term;

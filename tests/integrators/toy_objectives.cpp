@@ -10,8 +10,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // The 3D position made of x[first], x[first + 1], x[first + 2].
-template <class Jets>
-std::array<typename Jets::value_type, 3> node(const Jets& x, int first) {
+template <class Duals>
+std::array<typename Duals::value_type, 3> node(const Duals& x, int first) {
   return {x[static_cast<size_t>(first)], x[static_cast<size_t>(first + 1)],
           x[static_cast<size_t>(first + 2)]};
 }
@@ -31,10 +31,10 @@ StencilObjective make_chain(const ChainOptions& o) {
   for (int k = 0; k + 1 < m; ++k) {
     // Spring: k/2 (l - L)^2 + k4/4 (l - L)^4, l = |x_{k+1} - x_k|.
     terms.push_back(make_term<6>({3 * k, 3 * k + 1, 3 * k + 2, 3 * k + 3, 3 * k + 4, 3 * k + 5},
-                                 [o, L](const std::array<Jet<6>, 6>& v) {
-                                   const Jet3<6> e = difference(node(v, 3), node(v, 0));
-                                   const Jet<6> stretch = sqrt(dot(e, e)) - L;
-                                   const Jet<6> s2 = square(stretch);
+                                 [o, L](const std::array<Dual<6>, 6>& v) {
+                                   const Dual3<6> e = difference(node(v, 3), node(v, 0));
+                                   const Dual<6> stretch = sqrt(dot(e, e)) - L;
+                                   const Dual<6> s2 = square(stretch);
                                    return 0.5 * o.stretch * s2 + 0.25 * o.quartic * square(s2);
                                  }));
   }
@@ -42,16 +42,16 @@ StencilObjective make_chain(const ChainOptions& o) {
     // Bending-like: kb/L (1 - t_a . t_b) with unit tangents t of the two edges.
     std::array<int, 9> dofs;
     for (int i = 0; i < 9; ++i) dofs[static_cast<size_t>(i)] = 3 * (k - 1) + i;
-    terms.push_back(make_term<9>(dofs, [o, L](const std::array<Jet<9>, 9>& v) {
-      const Jet3<9> a = difference(node(v, 3), node(v, 0));
-      const Jet3<9> b = difference(node(v, 6), node(v, 3));
-      const Jet<9> cosine = dot(a, b) / sqrt(dot(a, a) * dot(b, b));
+    terms.push_back(make_term<9>(dofs, [o, L](const std::array<Dual<9>, 9>& v) {
+      const Dual3<9> a = difference(node(v, 3), node(v, 0));
+      const Dual3<9> b = difference(node(v, 6), node(v, 3));
+      const Dual<9> cosine = dot(a, b) / sqrt(dot(a, a) * dot(b, b));
       return (o.bending / L) * (1.0 - cosine);
     }));
   }
   for (int k = 1; k + 1 < m; ++k) {
     // Dead loads: potential -f . x.
-    terms.push_back(make_term<2>({3 * k + 1, 3 * k + 2}, [o](const std::array<Jet<2>, 2>& v) {
+    terms.push_back(make_term<2>({3 * k + 1, 3 * k + 2}, [o](const std::array<Dual<2>, 2>& v) {
       return o.weight * v[1] - o.side_load * v[0];
     }));
   }
@@ -64,7 +64,7 @@ StencilObjective make_rosenbrock(int n, double a) {
   for (int i = 0; i < n; ++i) x[i] = i % 2 == 0 ? -1.2 : 1.0;
   std::vector<Term> terms;
   for (int i = 0; i + 1 < n; i += 2)
-    terms.push_back(make_term<2>({i, i + 1}, [a](const std::array<Jet<2>, 2>& v) {
+    terms.push_back(make_term<2>({i, i + 1}, [a](const std::array<Dual<2>, 2>& v) {
       return a * square(v[1] - square(v[0])) + square(1.0 - v[0]);
     }));
   return StencilObjective(x, {}, std::move(terms));
@@ -79,22 +79,22 @@ StencilObjective make_column(const ColumnOptions& o) {
   std::vector<Term> terms;
   for (int k = 0; k < N; ++k)
     terms.push_back(make_term<4>({2 * k, 2 * k + 1, 2 * k + 2, 2 * k + 3},
-                                 [o, L](const std::array<Jet<4>, 4>& v) {
-                                   const Jet<4> l = sqrt(square(v[2] - v[0]) + square(v[3] - v[1]));
+                                 [o, L](const std::array<Dual<4>, 4>& v) {
+                                   const Dual<4> l = sqrt(square(v[2] - v[0]) + square(v[3] - v[1]));
                                    return (0.5 * o.stretch / L) * square(l - L);
                                  }));
   for (int k = 1; k < N; ++k)
     terms.push_back(make_term<6>(
         {2 * k - 2, 2 * k - 1, 2 * k, 2 * k + 1, 2 * k + 2, 2 * k + 3},
-        [o, L](const std::array<Jet<6>, 6>& v) {
-          const Jet<6> ax = v[2] - v[0], ay = v[3] - v[1], bx = v[4] - v[2], by = v[5] - v[3];
-          const Jet<6> cosine =
+        [o, L](const std::array<Dual<6>, 6>& v) {
+          const Dual<6> ax = v[2] - v[0], ay = v[3] - v[1], bx = v[4] - v[2], by = v[5] - v[3];
+          const Dual<6> cosine =
               (ax * bx + ay * by) / sqrt((ax * ax + ay * ay) * (bx * bx + by * by));
           return (o.bending / L) * (1.0 - cosine);
         }));
   // Axial dead load P pushing the roller end towards the pinned end.
   terms.push_back(
-      make_term<1>({2 * N}, [load](const std::array<Jet<1>, 1>& v) { return load * v[0]; }));
+      make_term<1>({2 * N}, [load](const std::array<Dual<1>, 1>& v) { return load * v[0]; }));
   return StencilObjective(x, {0, 1, 2 * N + 1}, std::move(terms));
 }
 

@@ -10,7 +10,7 @@
 #include "io/problem_setup.hpp"
 #include "linkage/topology.hpp"
 
-namespace xshell {
+namespace xshell::test {
 namespace {
 
 using nlohmann::json;
@@ -544,4 +544,4 @@ TEST_CASE("config: check_vertices names the key of an index out of range") {
                        InputError);
 }
 
-}  // namespace xshell
+}  // namespace xshell::test

@@ -4,7 +4,7 @@
 
 #include "io/input_error.hpp"
 
-namespace xshell {
+namespace xshell::test {
 
 TEST_CASE("json_field: edit_distance is the Levenshtein distance") {
   struct Case {
@@ -68,4 +68,4 @@ TEST_CASE("json_field: accessors check types and name the path") {
   CHECK_FALSE(root.find("missing").has_value());
 }
 
-}  // namespace xshell
+}  // namespace xshell::test

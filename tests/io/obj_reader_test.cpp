@@ -9,8 +9,9 @@
 #include <sstream>
 
 #include "io/input_error.hpp"
+#include "skip.hpp"
 
-namespace xshell {
+namespace xshell::test {
 namespace {
 
 ObjLineGraph parse(const std::string& text) {
@@ -231,10 +232,7 @@ TEST_CASE("obj: rejects a file without edges") {
 TEST_CASE("obj: every shared linkage loads with the documented counts") {
   namespace fs = std::filesystem;
   const fs::path folder = XSHELL_SHARED_DATA_DIR;
-  if (!fs::is_directory(folder)) {
-    MESSAGE("skipped: " << folder << " is absent");
-    return;
-  }
+  if (!fs::is_directory(folder)) XSHELL_SKIP(folder.string() + " is absent");
   struct Expected {
     int vertices, segments;
     std::map<int, int> valences;  // valence -> number of vertices
@@ -274,4 +272,4 @@ TEST_CASE("obj: every shared linkage loads with the documented counts") {
   CHECK(checked == 10);
 }
 
-}  // namespace xshell
+}  // namespace xshell::test

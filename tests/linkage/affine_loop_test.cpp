@@ -11,7 +11,8 @@
 
 #include "linkage/affine_loop.hpp"
 
-using namespace xshell;
+namespace xshell::test {
+
 
 #ifdef _OPENMP
 namespace {
@@ -99,3 +100,5 @@ TEST_CASE("AffineLoop: a thread takes its own consecutive range first, and the o
 #else
 TEST_CASE("AffineLoop without OpenMP") { MESSAGE("built without OpenMP: nothing to compare"); }
 #endif
+
+}  // namespace xshell::test

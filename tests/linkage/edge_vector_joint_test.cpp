@@ -12,8 +12,8 @@
 #include "linkage/model_error.hpp"
 #include "linkage_fixtures.hpp"
 
-using namespace xshell;
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 
@@ -224,3 +224,5 @@ TEST_CASE("States restore across joint kinds, in memory and through state.json")
   }
   CHECK(restores == 4);
 }
+
+}  // namespace xshell::test

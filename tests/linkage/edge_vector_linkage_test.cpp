@@ -13,8 +13,8 @@
 #include "linkage/statics_problem.hpp"
 #include "linkage_fixtures.hpp"
 
-using namespace xshell;
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 
@@ -218,3 +218,5 @@ TEST_CASE("Edge-vector joints: the gradient is orthogonal to rigid motions") {
   }
   CHECK(motions == 6);
 }
+
+}  // namespace xshell::test

@@ -11,16 +11,15 @@
 #include "io/obj_reader.hpp"
 #include "linkage/model_error.hpp"
 #include "linkage/rod_linkage.hpp"
+#include "skip.hpp"
 
-using namespace xshell;
+namespace xshell::test {
+
 
 TEST_CASE("Real graphs with edge-vector joints: near-parallel joints are refused and the rest build" *
           doctest::test_suite("validation")) {
   const std::filesystem::path dir = XSHELL_SHARED_DATA_DIR;
-  if (!std::filesystem::is_directory(dir)) {
-    MESSAGE("skipped: " << dir << " is absent");
-    return;
-  }
+  if (!std::filesystem::is_directory(dir)) XSHELL_SKIP(dir.string() + " is absent");
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::directory_iterator(dir))
     if (entry.path().extension() == ".obj") files.push_back(entry.path());
@@ -66,3 +65,5 @@ TEST_CASE("Real graphs with edge-vector joints: near-parallel joints are refused
   CHECK(graphs == 10);
   CHECK(built + refused == graphs);
 }
+
+}  // namespace xshell::test

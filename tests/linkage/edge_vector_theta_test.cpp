@@ -11,8 +11,8 @@
 #include "finite_differences.hpp"
 #include "linkage/edge_vector_conversion.hpp"
 
-using namespace xshell;
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 
@@ -192,3 +192,5 @@ TEST_CASE("Seed 4.2 holds only at the update: away from it the exact Hessian dif
   }
   CHECK(cases == 8);
 }
+
+}  // namespace xshell::test

@@ -5,7 +5,8 @@
 
 #include "linkage/graph.hpp"
 
-using namespace xshell;
+namespace xshell::test {
+
 
 TEST_CASE("corner vertices: the extremes along the plan's four diagonals, each once") {
   // A 3 x 2 grid of points, slightly rotated, plus one point inside.
@@ -23,3 +24,5 @@ TEST_CASE("corner vertices: the extremes along the plan's four diagonals, each o
   CHECK(corner_vertices(one) == std::vector<int>{0});
   CHECK(corner_vertices(LineGraph{}).empty());
 }
+
+}  // namespace xshell::test

@@ -14,8 +14,8 @@
 #include "linkage/statics_problem.hpp"
 #include "linkage_fixtures.hpp"
 
-using namespace xshell;
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 
@@ -252,3 +252,5 @@ TEST_CASE("The Hessian pass gives the gradient too, and both are recomputed afte
   problem.set_dofs(problem.dofs());
   CHECK((g_rebased - problem.free_gradient()).cwiseAbs().maxCoeff() <= 1e-12 * g2.cwiseAbs().maxCoeff());
 }
+
+}  // namespace xshell::test

@@ -5,7 +5,7 @@
 
 #include "linkage/rod_linkage.hpp"
 
-namespace xshell::testing {
+namespace xshell::test {
 
 // Two rods crossing at one valence-4 joint; four free ends.
 inline LineGraph single_x() {
@@ -53,4 +53,4 @@ inline LinkageOptions test_options(RestShape rest = RestShape::Input, int subdiv
   return o;
 }
 
-}  // namespace xshell::testing
+}  // namespace xshell::test

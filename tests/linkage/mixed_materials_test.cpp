@@ -8,8 +8,8 @@
 #include "finite_differences.hpp"
 #include "linkage_fixtures.hpp"
 
-using namespace xshell;
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 
@@ -116,3 +116,5 @@ TEST_CASE("Mixed materials: a material list of the wrong length is refused") {
   o.segment_materials.assign(3, o.material);  // single_x has 4 segments
   CHECK_THROWS(RodLinkage(single_x(), o));
 }
+
+}  // namespace xshell::test

@@ -5,18 +5,17 @@
 
 #include "io/obj_reader.hpp"
 #include "linkage/rod_linkage.hpp"
+#include "skip.hpp"
 
-using namespace xshell;
+namespace xshell::test {
+
 
 // Builds a linkage from every graph of the reference implementation (when
 // ../shared/data/elasticrods is present) and reports its size.
 TEST_CASE("Every real linkage graph builds with joints opening in (0 pi) and zero input energy" *
           doctest::test_suite("validation")) {
   const std::filesystem::path dir = XSHELL_SHARED_DATA_DIR;
-  if (!std::filesystem::is_directory(dir)) {
-    MESSAGE("skipped: " << dir << " is absent");
-    return;
-  }
+  if (!std::filesystem::is_directory(dir)) XSHELL_SKIP(dir.string() + " is absent");
   int built = 0;
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::directory_iterator(dir))
@@ -47,3 +46,5 @@ TEST_CASE("Every real linkage graph builds with joints opening in (0 pi) and zer
   CHECK(built == static_cast<int>(files.size()));
   CHECK(built == 10);
 }
+
+}  // namespace xshell::test

@@ -6,7 +6,8 @@
 #include <Eigen/SVD>
 #include <random>
 
-using namespace xshell;
+namespace xshell::test {
+
 
 namespace {
 
@@ -158,3 +159,5 @@ TEST_CASE("Rigid motions: random supports, every reported motion is free and the
   }
   CHECK(checked > 40);
 }
+
+}  // namespace xshell::test

@@ -5,8 +5,8 @@
 #include "finite_differences.hpp"
 #include "linkage_fixtures.hpp"
 
-using namespace xshell;
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 
@@ -218,3 +218,5 @@ TEST_CASE("The gradient is orthogonal to rigid motions of the linkage") {
   }
   CHECK(motions == 6);
 }
+
+}  // namespace xshell::test

@@ -5,8 +5,8 @@
 #include "finite_differences.hpp"
 #include "linkage_fixtures.hpp"
 
-using namespace xshell;
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 // Rod A runs straight along x through two valence-4 joints, cut into three
@@ -72,3 +72,5 @@ TEST_CASE("A straight rod cut into segments at joints has the energy of the uncu
   }
   CHECK(compared == 5);
 }
+
+}  // namespace xshell::test

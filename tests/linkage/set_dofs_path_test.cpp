@@ -9,8 +9,8 @@
 #include "linkage/rod_linkage.hpp"
 #include "linkage_fixtures.hpp"
 
-using namespace xshell;
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 TEST_CASE("set_dofs does not depend on the points visited before: a joint turned past pi and back") {
   RodLinkage linkage(grid(3, 3, 0.2), test_options(RestShape::Straight));
@@ -73,3 +73,5 @@ TEST_CASE("set_dofs does not depend on the points visited before: a joint turned
   linkage.set_dofs(here);
   CHECK(linkage.energy().total() == doctest::Approx(energy_here).epsilon(1e-12));
 }
+
+}  // namespace xshell::test

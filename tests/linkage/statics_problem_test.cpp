@@ -7,8 +7,8 @@
 #include "linkage/statics_problem.hpp"
 #include "linkage_fixtures.hpp"
 
-using namespace xshell;
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 StaticsSetup loaded_setup() {
@@ -128,3 +128,5 @@ TEST_CASE("A rebase carries the velocity over: the motion it describes is unchan
   plain.rebase();
   CHECK(plain.energy().total() == doctest::Approx(e).epsilon(1e-12));
 }
+
+}  // namespace xshell::test

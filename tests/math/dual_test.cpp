@@ -6,9 +6,10 @@
 #include "math/dual.hpp"
 #include "math/rotation.hpp"
 
-using namespace xshell;
-using xshell::testing::check_gradient;
-using xshell::testing::check_hessian;
+namespace xshell::test {
+
+using xshell::test::check_gradient;
+using xshell::test::check_hessian;
 
 namespace {
 // A function exercising every operation of Dual.
@@ -34,7 +35,7 @@ TEST_CASE("Dual gives the exact gradient and Hessian of a composite function") {
   std::mt19937 rng(7);
   int checked = 0;
   for (int trial = 0; trial < 5; ++trial) {
-    Eigen::VectorXd x = xshell::testing::random_vector(4, rng);
+    Eigen::VectorXd x = xshell::test::random_vector(4, rng);
     x[3] = 2.0 + x[3];  // keep away from the division's pole
     const auto f = [](const Eigen::VectorXd& y) { return composite(y.data()); };
     const auto g = [](const Eigen::VectorXd& y) {
@@ -101,10 +102,10 @@ TEST_CASE("Rotation by a rotation vector: value and derivatives at and near zero
 TEST_CASE("Parallel transport takes a to b, preserves lengths and fixes a x b") {
   std::mt19937 rng(11);
   for (int trial = 0; trial < 20; ++trial) {
-    const Eigen::Vector3d a = xshell::testing::random_vector(3, rng).normalized();
-    const Eigen::Vector3d b = xshell::testing::random_vector(3, rng).normalized();
+    const Eigen::Vector3d a = xshell::test::random_vector(3, rng).normalized();
+    const Eigen::Vector3d b = xshell::test::random_vector(3, rng).normalized();
     if (a.dot(b) < -0.9) continue;
-    const Eigen::Vector3d v = xshell::testing::random_vector(3, rng);
+    const Eigen::Vector3d v = xshell::test::random_vector(3, rng);
     const Eigen::Vector3d pa = parallel_transport(V3<double>(a), V3<double>(b), V3<double>(a)).values();
     const Eigen::Vector3d pv = parallel_transport(V3<double>(a), V3<double>(b), V3<double>(v)).values();
     const Eigen::Vector3d axis = a.cross(b);
@@ -114,3 +115,5 @@ TEST_CASE("Parallel transport takes a to b, preserves lengths and fixes a x b") 
     CHECK((paxis - axis).norm() < 1e-14);
   }
 }
+
+}  // namespace xshell::test

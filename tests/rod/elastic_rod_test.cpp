@@ -3,8 +3,8 @@
 #include "rod_fixtures.hpp"
 #include "rod/stretching.hpp"
 
-using namespace xshell;
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 // Energy, gradient and Hessian of a copy of `rod` moved to q (the source
@@ -176,3 +176,5 @@ TEST_CASE("Stretching of one edge: value and known derivatives") {
   CHECK(h(0, 0) == doctest::Approx(4.0));
   CHECK(h(1, 1) == doctest::Approx(4.0 * 0.5 / 1.5));
 }
+
+}  // namespace xshell::test

@@ -6,7 +6,7 @@
 #include "finite_differences.hpp"
 #include "rod/elastic_rod.hpp"
 
-namespace xshell::testing {
+namespace xshell::test {
 
 inline RodStiffness anisotropic_stiffness() {
   Material m;
@@ -38,4 +38,4 @@ inline void perturb(ElasticRod& rod, std::mt19937& rng, double amplitude) {
   rod.set_dofs(rod.dofs() + random_vector(rod.num_dofs(), rng, amplitude));
 }
 
-}  // namespace xshell::testing
+}  // namespace xshell::test

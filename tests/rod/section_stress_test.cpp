@@ -7,7 +7,8 @@
 
 #include "rod/section_stress.hpp"
 
-using namespace xshell;
+namespace xshell::test {
+
 
 TEST_CASE("Section moduli agree with the stiffnesses and textbook torsion formulas") {
   int checked = 0;
@@ -65,3 +66,5 @@ TEST_CASE("Combined normal stress: corners of a rectangle, the boundary of an el
   CHECK(section_stresses(e, bending).max_normal == doctest::Approx(brute(e, bending, true)).epsilon(1e-6));
   CHECK(sr.torsional_shear == doctest::Approx(0.7 / r.torsion_modulus));
 }
+
+}  // namespace xshell::test

@@ -10,8 +10,8 @@
 #include "rod_fixtures.hpp"
 #include "rod/vertex_stencil.hpp"
 
-using namespace xshell;
-using namespace xshell::testing;
+namespace xshell::test {
+
 
 namespace {
 
@@ -108,3 +108,5 @@ TEST_CASE("Rod gradient and Hessian from the fast kernels: one pass equals the s
   }
   CHECK(checked == 4 * (3 * 8 + 7) * (3 * 8 + 7));
 }
+
+}  // namespace xshell::test

@@ -1,0 +1,33 @@
+// The linkage statics problem seen as a solver Objective: free unknowns,
+// total energy (elastic plus load potential), its gradient and Hessian, the
+// dimensionless convergence weights, masses and the rebase (source-frame
+// update and joint fold) that the solvers call between iterations.
+#pragma once
+
+#include "linkage/statics_problem.hpp"
+#include "integrators/common/objective.hpp"
+
+namespace xshell {
+
+class LinkageObjective : public Objective {
+ public:
+  explicit LinkageObjective(LinkageProblem& problem) : problem_(problem) {}
+
+  Eigen::Index size() const override { return problem_.num_free(); }
+  Eigen::VectorXd get() const override { return problem_.free_dofs(); }
+  void set(const Eigen::VectorXd& q) override { problem_.set_free_dofs(q); }
+  double energy() const override { return problem_.energy().total(); }
+  double set_and_energy(const Eigen::VectorXd& q) override { return problem_.set_free_dofs_and_energy(q); }
+  Eigen::VectorXd gradient() const override { return problem_.free_gradient(); }
+  const Eigen::SparseMatrix<double>& hessian() override { return problem_.free_hessian(); }
+  Eigen::VectorXd gradient_weights() const override { return problem_.gradient_weights(); }
+  Eigen::VectorXd mass() const override { return problem_.free_mass(); }
+  void rebase(Eigen::VectorXd* velocity) override { problem_.rebase(velocity); }
+
+  LinkageProblem& problem() { return problem_; }
+
+ private:
+  LinkageProblem& problem_;
+};
+
+}  // namespace xshell

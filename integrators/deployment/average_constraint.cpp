@@ -1,0 +1,209 @@
+#include "integrators/deployment/average_constraint.hpp"
+
+#include <algorithm>
+#include <deque>
+#include <stdexcept>
+
+#include "linkage/joint.hpp"
+
+namespace xshell {
+
+AverageConstraint::AverageConstraint(Eigen::Index size, std::vector<int> members,
+                                     std::vector<int> parent, int count, double fixed_sum)
+    : size_(size), members_(std::move(members)), count_(count), fixed_sum_(fixed_sum), root_(-1) {
+  const int m = static_cast<int>(members_.size());
+  if (m == 0) throw std::invalid_argument("average constraint: no free member");
+  if (static_cast<int>(parent.size()) != m)
+    throw std::invalid_argument("average constraint: one parent per member");
+  if (count_ < m)
+    throw std::invalid_argument("average constraint: count below the number of members");
+  std::vector<bool> seen(size_, false);
+  for (int i : members_) {
+    if (i < 0 || i >= size_ || seen[i])
+      throw std::invalid_argument("average constraint: bad member index");
+    seen[i] = true;
+  }
+  children_.assign(size_, {});
+  parent_.assign(m, -1);
+  for (int k = 0; k < m; ++k) {
+    if (parent[k] < 0) {
+      if (root_ >= 0) throw std::invalid_argument("average constraint: more than one root");
+      root_ = members_[k];
+      continue;
+    }
+    if (parent[k] >= m || parent[k] == k)
+      throw std::invalid_argument("average constraint: bad parent");
+    parent_[k] = members_[parent[k]];
+    children_[parent_[k]].push_back(members_[k]);
+  }
+  if (root_ < 0) throw std::invalid_argument("average constraint: no root");
+  // Parents before children; every member must hang from the root.
+  std::deque<int> queue{root_};
+  while (!queue.empty()) {
+    const int i = queue.front();
+    queue.pop_front();
+    member_order_.push_back(i);
+    for (int c : children_[i]) queue.push_back(c);
+  }
+  if (static_cast<int>(member_order_.size()) != m)
+    throw std::invalid_argument("average constraint: the parents do not form a tree");
+  a_ = Eigen::VectorXd::Zero(size_);
+  for (int i : members_) a_[i] = 1.0 / count_;
+}
+
+double AverageConstraint::value(const Eigen::VectorXd& q) const {
+  double sum = fixed_sum_;
+  for (int i : members_) sum += q[i];
+  return sum / count_;
+}
+
+void AverageConstraint::project(Eigen::VectorXd& q, double target) const {
+  const double shift = (target - value(q)) * count_ / static_cast<double>(members_.size());
+  for (int i : members_) q[i] += shift;
+}
+
+double AverageConstraint::multiplier(const Eigen::VectorXd& g) const {
+  double sum = 0.0;
+  for (int i : members_) sum += g[i];
+  // a.g / a.a = (sum / N) / (m / N^2)
+  return sum * count_ / static_cast<double>(members_.size());
+}
+
+Eigen::VectorXd AverageConstraint::projected(const Eigen::VectorXd& g) const {
+  return g - multiplier(g) * a_;
+}
+
+Eigen::VectorXd AverageConstraint::expand(const Eigen::VectorXd& z) const {
+  Eigen::VectorXd dq(size_);
+  for (Eigen::Index i = 0; i < size_; ++i)
+    dq[i] = i == root_ ? 0.0 : z[z_index(static_cast<int>(i))];
+  for (size_t k = 0; k < members_.size(); ++k)
+    if (parent_[k] >= 0) dq[parent_[k]] -= z[z_index(members_[k])];
+  return dq;
+}
+
+Eigen::VectorXd AverageConstraint::restrict(const Eigen::VectorXd& g) const {
+  Eigen::VectorXd out(size_ - 1);
+  for (Eigen::Index i = 0; i < size_; ++i)
+    if (i != root_) out[z_index(static_cast<int>(i))] = g[i];
+  for (size_t k = 0; k < members_.size(); ++k)
+    if (parent_[k] >= 0) out[z_index(members_[k])] -= g[parent_[k]];
+  return out;
+}
+
+Eigen::VectorXd AverageConstraint::coordinates(const Eigen::VectorXd& dq) const {
+  // A member's coordinate is the sum of dq over its subtree: B z = dq gives
+  // dq_k = z_k - sum of z over k's children.
+  Eigen::VectorXd subtree = dq;
+  Eigen::VectorXd z(size_ - 1);
+  for (auto it = member_order_.rbegin(); it != member_order_.rend(); ++it)
+    for (int c : children_[*it]) subtree[*it] += subtree[c];
+  for (Eigen::Index i = 0; i < size_; ++i)
+    if (i != root_) z[z_index(static_cast<int>(i))] = subtree[i];
+  return z;
+}
+
+Eigen::SparseMatrix<double> AverageConstraint::reduce(const Eigen::SparseMatrix<double>& H) const {
+  // Row i of B: +1 in i's own column (unless i is the root), -1 in the
+  // column of each child of i.
+  auto for_row = [&](int i, auto&& f) {
+    if (i != root_) f(z_index(i), 1.0);
+    for (int c : children_[i]) f(z_index(c), -1.0);
+  };
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<size_t>(H.nonZeros()) + 8 * members_.size() * 9);
+  for (int col = 0; col < H.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(H, col); it; ++it) {
+      const int row = static_cast<int>(it.row());
+      const double v = it.value();
+      for_row(row, [&](int zr, double br) {
+        for_row(col, [&](int zc, double bc) { triplets.emplace_back(zr, zc, br * v * bc); });
+      });
+    }
+  Eigen::SparseMatrix<double> out(size_ - 1, size_ - 1);
+  out.setFromTriplets(triplets.begin(), triplets.end());
+  return out;
+}
+
+Eigen::VectorXd AverageConstraint::reduce_diagonal(const Eigen::VectorXd& m) const {
+  Eigen::VectorXd out(size_ - 1);
+  for (Eigen::Index i = 0; i < size_; ++i)
+    if (i != root_) out[z_index(static_cast<int>(i))] = m[i];
+  for (size_t k = 0; k < members_.size(); ++k)
+    if (parent_[k] >= 0) out[z_index(members_[k])] += m[parent_[k]];
+  return out;
+}
+
+Eigen::VectorXd AverageConstraint::reduce_weights(const Eigen::VectorXd& w) const {
+  Eigen::VectorXd out(size_ - 1);
+  for (Eigen::Index i = 0; i < size_; ++i)
+    if (i != root_) out[z_index(static_cast<int>(i))] = w[i];
+  return out;
+}
+
+AverageConstraint average_opening_angle_constraint(const LinkageProblem& problem) {
+  const RodLinkage& linkage = problem.linkage();
+  const std::vector<int>& free = problem.free_indices();  // sorted reduced indices
+  auto free_position = [&](int reduced) {
+    const auto it = std::lower_bound(free.begin(), free.end(), reduced);
+    return it != free.end() && *it == reduced ? static_cast<int>(it - free.begin()) : -1;
+  };
+  const int nv = static_cast<int>(linkage.graph().vertices.size());
+  std::vector<int> member_of_vertex(nv, -1);  // position in `members`
+  std::vector<int> members;
+  double fixed_sum = 0.0;
+  int root_vertex = -1;
+  for (int j = 0; j < linkage.num_joints(); ++j) {
+    const int f = free_position(linkage.joint_dof_offset(j) + kAlpha);
+    if (f < 0) {
+      fixed_sum += linkage.joint(j).opening_angle();
+      continue;
+    }
+    const int v = linkage.topology().joints[j].vertex;
+    member_of_vertex[v] = static_cast<int>(members.size());
+    members.push_back(f);
+    if (root_vertex < 0) root_vertex = v;
+  }
+  if (members.empty())
+    throw std::invalid_argument(
+        "every opening angle is fixed: the average opening angle cannot be actuated");
+
+  // Breadth first through the graph from the root's vertex; a member's
+  // parent is the nearest member on its path back to the root.
+  std::vector<std::vector<int>> neighbours(nv);
+  for (const auto& e : linkage.graph().edges) {
+    neighbours[e[0]].push_back(e[1]);
+    neighbours[e[1]].push_back(e[0]);
+  }
+  std::vector<int> parent(members.size(), -1),
+      nearest(nv, -1);  // nearest member at or above a vertex
+  std::vector<bool> visited(nv, false);
+  std::deque<int> queue{root_vertex};
+  visited[root_vertex] = true;
+  nearest[root_vertex] = member_of_vertex[root_vertex];
+  while (!queue.empty()) {
+    const int u = queue.front();
+    queue.pop_front();
+    for (int v : neighbours[u]) {
+      if (visited[v]) continue;
+      visited[v] = true;
+      if (member_of_vertex[v] >= 0) {
+        parent[member_of_vertex[v]] = nearest[u];
+        nearest[v] = member_of_vertex[v];
+      } else {
+        nearest[v] = nearest[u];
+      }
+      queue.push_back(v);
+    }
+  }
+  return AverageConstraint(problem.num_free(), members, parent, linkage.num_joints(), fixed_sum);
+}
+
+double average_opening_angle(const RodLinkage& linkage) {
+  if (linkage.num_joints() == 0) return 0.0;
+  double sum = 0.0;
+  for (int j = 0; j < linkage.num_joints(); ++j) sum += linkage.joint(j).opening_angle();
+  return sum / linkage.num_joints();
+}
+
+}  // namespace xshell

@@ -1,0 +1,314 @@
+#include "integrators/deployment/deployment.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "integrators/deployment/average_constraint.hpp"
+#include "integrators/deployment/constrained_newton.hpp"
+#include "integrators/deployment/constrained_objective.hpp"
+#include "integrators/common/linkage_objective.hpp"
+#include "integrators/common/wall_clock.hpp"
+
+namespace xshell {
+
+const char* to_string(DeploymentStatus status) {
+  switch (status) {
+    case DeploymentStatus::Completed:
+      return "completed";
+    case DeploymentStatus::StepFailed:
+      return "step failed";
+    case DeploymentStatus::Interrupted:
+      return "interrupted";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// Step of the central difference in the prescribed angles (radians): the
+// truncation error h^2 E''' / 6 and the round-off eps E / h are both near
+// 1e-10 relative.
+constexpr double kTorqueStep = 1e-5;
+
+// The outcome of one solve, whichever solver ran it.
+struct Attempt {
+  bool converged = false;
+  bool interrupted = false;
+  bool stable = false;
+  long iterations = 0;
+  double gradient_measure = 0.0;
+  double torque = 0.0;  // average actuation only
+  std::string reason;
+};
+
+// Deploys one problem: the state of a run of deploy().
+class Deployer {
+ public:
+  Deployer(LinkageProblem& problem, const DeploymentPlan& plan, const DeploymentOptions& options,
+           const DeploymentCallbacks& callbacks)
+      : problem_(problem),
+        plan_(plan),
+        options_(options),
+        callbacks_(callbacks),
+        objective_(problem) {
+    if (plan.steps < 1) throw std::invalid_argument("deployment: steps must be at least 1");
+    const RodLinkage& linkage = problem.linkage();
+    if (plan.joint_angles.empty()) {
+      constraint_.emplace(average_opening_angle_constraint(problem));
+      start_average_ = constraint_->value(problem.free_dofs());
+    } else {
+      const std::vector<int>& free = problem.free_indices();
+      for (const PrescribedAngle& p : plan.joint_angles) {
+        if (p.joint < 0 || p.joint >= linkage.num_joints())
+          throw std::invalid_argument("deployment: joint " + std::to_string(p.joint) +
+                                      " out of range");
+        const int r = linkage.joint_dof_offset(p.joint) + kAlpha;
+        if (std::binary_search(free.begin(), free.end(), r))
+          throw std::invalid_argument(
+              "deployment: the opening angle of joint " + std::to_string(p.joint) +
+              " is prescribed but free: fix it with an opening_angle support");
+        alpha_index_.push_back(r);
+        start_angles_.push_back(linkage.joint(p.joint).opening_angle());
+      }
+    }
+    // The constrained Newton solver also computes the tangent predictor.
+    if (constraint_ && (options.solver == DeploymentSolver::Newton ||
+                        options.predictor == DeploymentPredictor::Tangent))
+      constrained_newton_ =
+          std::make_unique<ConstrainedNewtonSolver>(objective_, *constraint_, options.newton);
+    if (!constraint_ && options.solver == DeploymentSolver::Newton)
+      newton_ = std::make_unique<NewtonSolver>(objective_, options.newton);
+  }
+
+  DeploymentResult run() {
+    const Clock::time_point start = Clock::now();
+    result_.start_angle = average_opening_angle(problem_.linkage());
+
+    // Step 0: equilibrium at the start's own value.
+    if (!advance(0.0, 0, 0)) return finish(start);
+
+    const double nominal = 1.0 / plan_.steps;
+    double s = 0.0, increment = nominal;
+    int grid = 0;  // s lies on or past the grid point grid / steps
+    int step = 0, halvings = 0;
+    double failed_seconds = 0.0;
+    while (grid < plan_.steps) {
+      const double next_grid = grid + 1 == plan_.steps ? 1.0 : (grid + 1) * nominal;
+      const bool to_grid = s + increment >= next_grid * (1.0 - 1e-12);
+      const double target = to_grid ? next_grid : s + increment;
+      const Clock::time_point attempt_start = Clock::now();
+      if (advance(target, step + 1, halvings, failed_seconds)) {
+        s = target;
+        if (to_grid) ++grid;
+        ++step;
+        halvings = 0;
+        failed_seconds = 0.0;
+        increment = std::min(2.0 * increment, nominal);
+        continue;
+      }
+      if (result_.status == DeploymentStatus::Interrupted) break;
+      if (halvings >= options_.max_halvings) {
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "the step to s = %.6g (average opening angle %.6g rad) failed %d times: ",
+                      target, average_target(target), halvings + 1);
+        result_.reason = text + last_reason_;
+        break;
+      }
+      ++halvings;
+      failed_seconds += seconds_since(attempt_start);
+      increment = 0.5 * (target - s);
+    }
+    if (grid == plan_.steps) {
+      result_.status = DeploymentStatus::Completed;
+      result_.reason = "reached the target in " + std::to_string(step) + " steps";
+    }
+    return finish(start);
+  }
+
+ private:
+  double average_target(double s) const {
+    if (!constraint_) return average_opening_angle(problem_.linkage());
+    return start_average_ + s * (plan_.average_angle - start_average_);
+  }
+
+  // Sets the actuated unknowns for path parameter s.
+  void apply(double s) {
+    if (constraint_) {
+      const Eigen::VectorXd q = problem_.free_dofs();
+      const double target = average_target(s);
+      const double change = target - constraint_->value(q);
+      if (options_.predictor == DeploymentPredictor::Tangent && change != 0.0) {
+        const Eigen::VectorXd t = constrained_newton_->tangent();
+        if (t.size() == q.size() && t.allFinite()) {
+          Eigen::VectorXd predicted = q + change * t;
+          constraint_->project(predicted, target);  // round-off only: a . t = 1
+          try {
+            problem_.set_free_dofs(predicted);
+            return;
+          } catch (const std::domain_error&) {
+            problem_.set_free_dofs(q);
+          }
+        }
+      }
+      Eigen::VectorXd shifted = q;
+      constraint_->project(shifted, target);
+      problem_.set_free_dofs(shifted);
+      return;
+    }
+    Eigen::VectorXd r = problem_.dofs();
+    for (size_t k = 0; k < alpha_index_.size(); ++k)
+      r[alpha_index_[k]] = start_angles_[k] + s * (plan_.joint_angles[k].angle - start_angles_[k]);
+    problem_.set_dofs(r);
+  }
+
+  Attempt solve(double s) {
+    Attempt a;
+    NewtonCallbacks newton_callbacks;
+    newton_callbacks.on_iteration = callbacks_.on_newton_iteration;
+    newton_callbacks.stop = callbacks_.stop;
+    DynamicsCallbacks dynamics_callbacks;
+    dynamics_callbacks.on_step = callbacks_.on_dynamics_step;
+    dynamics_callbacks.stop = callbacks_.stop;
+    if (constrained_newton_ && options_.solver == DeploymentSolver::Newton) {
+      const ConstrainedNewtonResult r =
+          constrained_newton_->solve(average_target(s), newton_callbacks);
+      a = {r.converged(),
+           r.status == NewtonStatus::Interrupted,
+           r.stable,
+           r.iterations,
+           r.gradient_measure,
+           r.multiplier,
+           r.reason};
+    } else if (newton_) {
+      const NewtonResult r = newton_->solve(newton_callbacks);
+      a = {r.converged(),
+           r.status == NewtonStatus::Interrupted,
+           r.stable,
+           r.iterations,
+           r.gradient_measure,
+           0.0,
+           r.reason};
+    } else if (constraint_) {
+      ConstrainedObjective reduced(objective_, *constraint_);
+      const DynamicsResult r = solve_dynamics(reduced, options_.dynamics, dynamics_callbacks);
+      a = {r.converged(),
+           r.status == DynamicsStatus::Interrupted,
+           r.stable,
+           r.steps,
+           r.gradient_measure,
+           reduced.multiplier(),
+           r.reason};
+    } else {
+      const DynamicsResult r = solve_dynamics(objective_, options_.dynamics, dynamics_callbacks);
+      a = {r.converged(),
+           r.status == DynamicsStatus::Interrupted,
+           r.stable,
+           r.steps,
+           r.gradient_measure,
+           0.0,
+           r.reason};
+    }
+    if (!constraint_) a.torque = prescribed_torque();
+    return a;
+  }
+
+  // dE/dtheta along the prescribed path (see the header), by a central
+  // difference in the prescribed angles at the current equilibrium.
+  double prescribed_torque() {
+    Eigen::VectorXd direction(alpha_index_.size());
+    for (size_t k = 0; k < alpha_index_.size(); ++k)
+      direction[k] = plan_.joint_angles[k].angle - start_angles_[k];
+    const double mean = direction.mean();
+    if (std::abs(mean) > 1e-12)
+      direction /= mean;
+    else
+      direction.setOnes();
+    const Eigen::VectorXd r = problem_.dofs();
+    auto energy_at = [&](double h) {
+      Eigen::VectorXd shifted = r;
+      for (size_t k = 0; k < alpha_index_.size(); ++k) shifted[alpha_index_[k]] += h * direction[k];
+      problem_.set_dofs(shifted);
+      return problem_.energy().total();
+    };
+    const double torque = (energy_at(kTorqueStep) - energy_at(-kTorqueStep)) / (2.0 * kTorqueStep);
+    problem_.set_dofs(r);
+    return torque;
+  }
+
+  // Moves to s and solves; on success records the step, otherwise restores
+  // the last accepted state.
+  bool advance(double s, int step, int halvings, double earlier_seconds = 0.0) {
+    const Clock::time_point start = Clock::now();
+    const LinkageProblem saved = problem_;
+    Attempt a;
+    try {
+      apply(s);
+      a = solve(s);
+    } catch (const std::domain_error& e) {
+      a = Attempt{};
+      a.reason = e.what();
+    }
+    result_.iterations += a.iterations;
+    if (!a.converged) {
+      problem_ = saved;
+      last_reason_ = a.reason;
+      if (a.interrupted) {
+        result_.status = DeploymentStatus::Interrupted;
+        result_.reason = "interrupted at step " + std::to_string(step);
+      } else {
+        ++result_.failed_attempts;
+        result_.status = DeploymentStatus::StepFailed;
+        if (step == 0)
+          result_.reason = "the start could not be brought to equilibrium: " + a.reason;
+      }
+      return false;
+    }
+    DeploymentStep row;
+    row.step = step;
+    row.fraction = s;
+    row.average_angle = average_opening_angle(problem_.linkage());
+    row.energy = problem_.energy();
+    row.torque = a.torque;
+    row.iterations = a.iterations;
+    row.stable = a.stable;
+    row.gradient_measure = a.gradient_measure;
+    row.halvings = halvings;
+    row.seconds = earlier_seconds + seconds_since(start);
+    result_.steps.push_back(row);
+    if (callbacks_.on_step) callbacks_.on_step(row);
+    return true;
+  }
+
+  DeploymentResult finish(Clock::time_point start) {
+    result_.seconds = seconds_since(start);
+    return std::move(result_);
+  }
+
+  LinkageProblem& problem_;
+  const DeploymentPlan& plan_;
+  const DeploymentOptions& options_;
+  const DeploymentCallbacks& callbacks_;
+  LinkageObjective objective_;
+  std::optional<AverageConstraint> constraint_;
+  double start_average_ = 0.0;
+  std::vector<int> alpha_index_;      // reduced index of each prescribed alpha
+  std::vector<double> start_angles_;  // their values at the start
+  std::unique_ptr<ConstrainedNewtonSolver> constrained_newton_;
+  std::unique_ptr<NewtonSolver> newton_;
+  DeploymentResult result_;
+  std::string last_reason_;
+};
+
+}  // namespace
+
+DeploymentResult deploy(LinkageProblem& problem, const DeploymentPlan& plan,
+                        const DeploymentOptions& options, const DeploymentCallbacks& callbacks) {
+  return Deployer(problem, plan, options, callbacks).run();
+}
+
+}  // namespace xshell

@@ -1,0 +1,130 @@
+// Deployment: opening a linkage from its current state to a target by
+// continuation, every step solved to equilibrium.
+//
+// Actuation, one of:
+//  - the average opening angle A over all joints (average_constraint.hpp):
+//    each step first shifts every free opening angle by the same amount so
+//    that the average is the step's target, then solves
+//      Newton:   grad E = tau a, a . q = A by the Schur complement
+//                (constrained_newton.hpp);
+//      dynamics: the unconstrained dynamics in the constraint's null-space
+//                coordinates q = c + B z (constrained_objective.hpp), so that
+//                IDA sees no algebraic constraint;
+//    the torque tau = dE/dA is the multiplier a.g / a.a of the final
+//    gradient (energy per radian, positive when the linkage resists opening);
+//  - prescribed opening angles at chosen joints, whose alpha must be fixed
+//    unknowns of the problem (an "opening_angle" support): each step sets
+//    them on the straight path from their start values to their targets and
+//    solves the plain problem (newton.hpp or dynamics.hpp). The torque is
+//    dE/dtheta with theta the mean of the prescribed angles along that path
+//    (a central difference of the equilibrium energy in the prescribed
+//    angles, which by the envelope theorem is the derivative of the
+//    equilibrium energy: the sum of the actuation moments weighted by how
+//    fast each joint is driven).
+//
+// Continuation: the path parameter s runs from 0 (the start) to 1 (the
+// target) in `steps` equal increments. Step 0 solves at the start's own
+// value. A step whose solve fails is undone (the problem is restored to the
+// last accepted state) and retried with half the increment, at most
+// max_halvings times in a row; after a success the increment doubles back
+// up to the nominal one, and steps always land on the nominal grid
+// s = k / steps. Unstable equilibria (saddles) are accepted and reported.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "integrators/dynamics/ida_dynamics.hpp"
+#include "linkage/statics_problem.hpp"
+#include "integrators/newton/newton.hpp"
+
+namespace xshell {
+
+enum class DeploymentSolver { Newton, Dynamics };
+
+// How a step's start is put on the constraint (average actuation).
+enum class DeploymentPredictor {
+  // Every free opening angle shifted by the same amount: the rods' other
+  // unknowns stay behind, so each joint's terminal edges kink against their
+  // neighbours and the solver starts far from equilibrium.
+  UniformShift,
+  // Along the tangent of the equilibrium path at the last accepted step
+  // (ConstrainedNewtonSolver::tangent(), one factorization): q + dA t, which
+  // meets the constraint exactly (a . t = 1) and starts the solver close to
+  // the next equilibrium. Falls back to the uniform shift when no tangent
+  // can be computed or the predicted configuration is invalid.
+  Tangent,
+};
+
+struct PrescribedAngle {
+  int joint = 0;       // joint index (not vertex)
+  double angle = 0.0;  // target opening angle, radians
+};
+
+struct DeploymentPlan {
+  // Prescribed angles when non-empty; otherwise the average opening angle
+  // is driven to average_angle (radians).
+  std::vector<PrescribedAngle> joint_angles;
+  double average_angle = 0.0;
+  int steps = 20;  // nominal number of increments (>= 1)
+};
+
+struct DeploymentOptions {
+  DeploymentSolver solver = DeploymentSolver::Newton;
+  DeploymentPredictor predictor = DeploymentPredictor::Tangent;  // average actuation only
+  NewtonOptions newton;      // line_search is ignored under the average constraint
+  DynamicsOptions dynamics;  // per step, from its start (DynamicsOptions::start)
+  int max_halvings = 6;      // consecutive halvings of a failing increment
+};
+
+// One accepted step: one row of deployment.csv.
+struct DeploymentStep {
+  int step = 0;                // 0: the start; then 1, 2, ... per accepted step
+  double fraction = 0.0;       // s, progress from the start (0) to the target (1)
+  double average_angle = 0.0;  // mean opening angle over all joints, radians
+  EnergyReport energy;
+  double torque = 0.0;  // dE/dA (or dE/dtheta for prescribed angles), energy per radian
+  long iterations = 0;  // Newton iterations or dynamics time steps of this step
+  bool stable = false;  // unshifted LL^T of the (constrained) Hessian succeeded
+  double gradient_measure = 0.0;
+  int halvings = 0;      // failed attempts before this step was accepted
+  double seconds = 0.0;  // wall time of the step, failed attempts included
+};
+
+struct DeploymentCallbacks {
+  std::function<void(const DeploymentStep&)> on_step;            // after every accepted step
+  std::function<void(const NewtonReport&)> on_newton_iteration;  // optional
+  std::function<void(const DynamicsReport&)> on_dynamics_step;   // optional
+  const std::atomic<bool>* stop = nullptr;                       // checked by the solvers
+};
+
+enum class DeploymentStatus {
+  Completed,    // the target was reached, every step converged
+  StepFailed,   // a step failed even after max_halvings halvings
+  Interrupted,  // the stop flag was raised
+};
+
+const char* to_string(DeploymentStatus status);
+
+struct DeploymentResult {
+  DeploymentStatus status = DeploymentStatus::StepFailed;
+  std::string reason;                 // one line
+  std::vector<DeploymentStep> steps;  // accepted steps, from step 0
+  long iterations = 0;                // all solver iterations, failed attempts included
+  int failed_attempts = 0;
+  double start_angle = 0.0;  // average opening angle before step 0
+  double seconds = 0.0;
+  bool completed() const { return status == DeploymentStatus::Completed; }
+};
+
+// Deploys `problem` from its current state. On failure or interruption the
+// problem is left at the last accepted step. Throws std::invalid_argument
+// for a plan that does not fit the problem (a prescribed joint whose alpha
+// is free, every alpha fixed under the average actuation).
+DeploymentResult deploy(LinkageProblem& problem, const DeploymentPlan& plan,
+                        const DeploymentOptions& options = {},
+                        const DeploymentCallbacks& callbacks = {});
+
+}  // namespace xshell

@@ -1,0 +1,297 @@
+#include "integrators/kinetic_damping/kinetic_damping.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "integrators/linear_algebra/cholesky_solver.hpp"
+#include "integrators/dynamics/mass_and_damping.hpp"
+#include "integrators/common/objective_evaluator.hpp"
+#include "integrators/linear_algebra/shifted_factorization.hpp"
+#include "integrators/common/wall_clock.hpp"
+
+namespace xshell {
+
+const char* to_string(KineticDampingStatus status) {
+  switch (status) {
+    case KineticDampingStatus::Converged:
+      return "converged";
+    case KineticDampingStatus::MaxIterations:
+      return "maximum number of iterations reached";
+    case KineticDampingStatus::InvalidConfiguration:
+      return "invalid configurations";
+    case KineticDampingStatus::NonFinite:
+      return "non-finite values";
+    case KineticDampingStatus::Interrupted:
+      return "interrupted";
+  }
+  return "unknown";
+}
+
+namespace {
+
+constexpr double kTimeStep = 1.0;  // dt: the masses scale with dt^2, so its value is immaterial
+
+// Moves the objective to q and returns E there, or NaN when q is not a valid
+// configuration (set() threw std::domain_error; `message` says why).
+double energy_at(Objective& objective, const Eigen::VectorXd& q, std::string& message) {
+  try {
+    objective.set(q);
+  } catch (const std::domain_error& e) {
+    message = e.what();
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  const double e = objective.energy();
+  if (!std::isfinite(e)) message = "non-finite energy";
+  return e;
+}
+
+// Peak time tau* in [-1/2, 1/2] around t_{n-1/2} from the parabola through
+// the kinetic energies at tau = -1, 0, 1 (see PeakLocation::Parabola).
+double parabola_peak(double before, double peak, double after) {
+  const double curvature = before - 2.0 * peak + after;
+  if (!(curvature < 0.0)) return 0.0;
+  return std::clamp((before - after) / (2.0 * curvature), -0.5, 0.5);
+}
+
+}  // namespace
+
+Eigen::VectorXd scaled_fictitious_mass(const Eigen::SparseMatrix<double>& H) {
+  const Eigen::Index n = H.rows();
+  Eigen::VectorXd d = H.diagonal().cwiseAbs();
+  const double largest = n > 0 ? d.maxCoeff() : 0.0;
+  if (!(largest > 0.0) || !std::isfinite(largest)) return fictitious_mass(H);
+  d = d.cwiseMax(1e-12 * largest);
+  const Eigen::VectorXd root = d.cwiseSqrt();
+  Eigen::VectorXd m = Eigen::VectorXd::Zero(n);
+  for (int j = 0; j < H.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(H, j); it; ++it)
+      m[it.row()] += std::abs(it.value()) * root[it.row()] / root[j];
+  return m.cwiseMax(d);
+}
+
+KineticDampingResult solve_kinetic_damping(Objective& objective,
+                                           const KineticDampingOptions& options,
+                                           const KineticDampingCallbacks& callbacks) {
+  const Clock::time_point start = Clock::now();
+  const double dt = kTimeStep;
+  KineticDampingResult result;
+  result.mass_safety = options.mass_safety;
+  const Eigen::Index n = objective.size();
+  if (n == 0) {
+    result.status = KineticDampingStatus::Converged;
+    result.reason = "no free unknowns";
+    result.energy = objective.energy();
+    result.stable = true;
+    return result;
+  }
+  auto finish = [&](KineticDampingStatus status, std::string reason) {
+    result.status = status;
+    result.reason = std::move(reason);
+  };
+
+  // The accepted state: q (current parametrization), its energy and gradient.
+  Eigen::VectorXd q = objective.get();
+  double energy = objective.energy();
+  Eigen::VectorXd gradient = objective.gradient();
+  ++result.gradient_evaluations;
+  Eigen::VectorXd weights = objective.gradient_weights();
+  const double energy0 = energy;
+
+  KineticDampingReport report;
+  report.energy = energy;
+  report.gradient_measure = weighted_max_norm(weights, gradient);
+  if (callbacks.on_iteration) callbacks.on_iteration(report);
+
+  // Leapfrog state: v = v_{n-1/2} (zero at rest), the last two kinetic
+  // energy samples since the last reset, and the energy at that reset.
+  Eigen::VectorXd velocity = Eigen::VectorXd::Zero(n);
+  bool at_rest = true;
+  double ke_last = 0.0, ke_before = 0.0;
+  int samples = 0;
+  double energy_at_reset = energy;
+  double safety = options.mass_safety;
+  Eigen::VectorXd mass;
+  long last_refresh = 0, last_rise = std::numeric_limits<long>::min() / 2, since_rebase = 0;
+  int rejected_since_peak = 0;
+  auto refresh_masses = [&](long iteration) {
+    // m_i = safety (dt^2/4) sum_j |K_ij| (Gerschgorin; fictitious_mass floors empty rows).
+    const Eigen::SparseMatrix<double>& H = objective.hessian();
+    mass =
+        (0.25 * safety * dt * dt) *
+        (options.mass_bound == MassBound::RowSum ? fictitious_mass(H) : scaled_fictitious_mass(H));
+    last_refresh = iteration;
+    ++result.mass_refreshes;
+  };
+  auto come_to_rest = [&] {
+    velocity.setZero();
+    at_rest = true;
+    ke_last = ke_before = 0.0;
+    samples = 0;
+  };
+
+  if (!std::isfinite(energy) || !std::isfinite(report.gradient_measure)) {
+    finish(KineticDampingStatus::NonFinite, "energy or gradient not finite at the start");
+  } else if (report.gradient_measure <= options.gradient_tolerance) {
+    finish(KineticDampingStatus::Converged, "in equilibrium at the start");
+  } else {
+    refresh_masses(0);
+    for (;;) {
+      if (callbacks.stop != nullptr && callbacks.stop->load()) {
+        finish(KineticDampingStatus::Interrupted, "stop flag raised");
+        break;
+      }
+      if (result.iterations >= options.max_iterations) {
+        finish(KineticDampingStatus::MaxIterations,
+               "no convergence in " + std::to_string(result.iterations) + " iterations");
+        break;
+      }
+      const Clock::time_point iteration_start = Clock::now();
+      const long iteration = ++result.iterations;
+      report = KineticDampingReport{};
+      report.iteration = iteration;
+
+      // The leapfrog step; from rest, Barnes's half step.
+      const Eigen::VectorXd acceleration = -gradient.cwiseQuotient(mass);  // M^-1 R_n
+      const Eigen::VectorXd next_velocity = at_rest ? Eigen::VectorXd(0.5 * dt * acceleration)
+                                                    : Eigen::VectorXd(velocity + dt * acceleration);
+      const Eigen::VectorXd step = dt * next_velocity;
+      report.step_norm = step.cwiseAbs().maxCoeff();
+      std::string failure;
+      const double next_energy = energy_at(objective, q + step, failure);
+
+      bool rejected = !std::isfinite(next_energy);
+      bool rebased = false;
+      Eigen::VectorXd next_gradient;
+      if (!rejected) {
+        const double ke = 0.5 * next_velocity.dot(mass.cwiseProduct(next_velocity));
+        Eigen::VectorXd next_q = q + step;
+        double accepted_energy = next_energy;
+        const bool peak = ke < ke_last;
+        if (peak) {
+          // Back to the peak on the segment q_{n-1} -> q_n (velocity v_{n-1/2}).
+          const double tau = options.peak == PeakLocation::Parabola && samples >= 2
+                                 ? parabola_peak(ke_before, ke_last, ke)
+                                 : 0.0;
+          const Eigen::VectorXd peak_q = q - ((0.5 - tau) * dt) * velocity;
+          std::string ignored;
+          const double peak_energy = energy_at(objective, peak_q, ignored);
+          if (std::isfinite(peak_energy)) {
+            next_q = peak_q;
+            accepted_energy = peak_energy;
+          } else {  // cannot happen on a convex valid set; stay at q_{n+1}
+            objective.set(next_q);
+          }
+          come_to_rest();
+          ++result.resets;
+          report.reset = true;
+          rejected_since_peak = 0;
+        } else {
+          velocity = next_velocity;
+          at_rest = false;
+          ke_before = ke_last;
+          ke_last = ke;
+          ++samples;
+        }
+        // The stable leapfrog from rest never raises a quadratic energy above
+        // its starting value: a rise means the masses are too light here.
+        const double margin = options.energy_rise_tolerance *
+                              std::max(std::abs(energy_at_reset), energy0 - energy_at_reset);
+        const bool rise = accepted_energy > energy_at_reset + margin;
+        if (rise) {
+          come_to_rest();
+          ++result.energy_rises;
+          report.energy_rise = true;
+          if (iteration - last_rise < options.mass_refresh_interval) safety *= options.mass_growth;
+          last_rise = iteration;
+        }
+        if (peak || rise) {
+          // v = 0: the rebase and the new masses cost no velocity transform.
+          objective.rebase(nullptr);
+          rebased = true;
+          if (rise || iteration - last_refresh >= options.mass_refresh_interval) {
+            refresh_masses(iteration);
+            report.mass_refreshed = true;
+          }
+          energy_at_reset = accepted_energy;
+        } else if (++since_rebase >= std::max(options.rebase_interval, 1L)) {
+          objective.rebase(&velocity);
+          rebased = true;
+          ke_last = 0.5 * velocity.dot(mass.cwiseProduct(velocity));
+        }
+        if (rebased) {
+          since_rebase = 0;
+          ++result.rebases;
+          next_q = objective.get();
+          weights = objective.gradient_weights();
+        }
+        next_gradient = objective.gradient();
+        ++result.gradient_evaluations;
+        if (next_gradient.allFinite()) {
+          q = std::move(next_q);
+          energy = accepted_energy;
+          gradient = std::move(next_gradient);
+        } else if (rebased) {  // q is expressed in the old unknowns: no way back
+          energy = accepted_energy;
+          gradient = std::move(next_gradient);
+          finish(KineticDampingStatus::NonFinite,
+                 "non-finite gradient after iteration " + std::to_string(iteration));
+          break;
+        } else {
+          rejected = true;
+          failure = "non-finite gradient";
+        }
+      }
+
+      if (rejected) {
+        // Back to the last accepted state, at rest, with heavier masses.
+        objective.set(q);
+        come_to_rest();
+        energy_at_reset = energy;
+        safety *= options.mass_growth;
+        mass *= options.mass_growth;
+        ++result.rejected_steps;
+        report.rejected = true;
+        if (++rejected_since_peak > options.max_rejected_steps) {
+          const bool invalid = failure.rfind("non-finite", 0) != 0;
+          finish(invalid ? KineticDampingStatus::InvalidConfiguration
+                         : KineticDampingStatus::NonFinite,
+                 std::to_string(rejected_since_peak) +
+                     " steps rejected without a kinetic-energy peak between: " + failure);
+          report.energy = energy;
+          report.gradient_measure = weighted_max_norm(weights, gradient);
+          report.seconds = seconds_since(iteration_start);
+          if (callbacks.on_iteration) callbacks.on_iteration(report);
+          break;
+        }
+      }
+
+      report.energy = energy;
+      report.kinetic_energy = at_rest ? 0.0 : ke_last;
+      report.gradient_measure = weighted_max_norm(weights, gradient);
+      report.seconds = seconds_since(iteration_start);
+      if (callbacks.on_iteration) callbacks.on_iteration(report);
+      const double energy_scale = std::max(std::abs(energy0 - energy), std::abs(energy));
+      if (report.gradient_measure <= options.gradient_tolerance &&
+          report.kinetic_energy <= options.kinetic_tolerance * energy_scale) {
+        finish(KineticDampingStatus::Converged, "gradient and kinetic energy below tolerance");
+        break;
+      }
+    }
+  }
+
+  result.mass_safety = safety;
+  result.energy = energy;
+  result.gradient_measure = weighted_max_norm(weights, gradient);
+  result.kinetic_energy = at_rest ? 0.0 : ke_last;
+  if (result.status != KineticDampingStatus::NonFinite) {
+    CholeskySolver cholesky;
+    result.stable = is_positive_definite(cholesky, objective.hessian());
+    result.factorizations = cholesky.stats().factorizations;
+  }
+  result.seconds = seconds_since(start);
+  return result;
+}
+
+}  // namespace xshell

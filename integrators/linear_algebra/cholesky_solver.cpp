@@ -1,0 +1,240 @@
+#include "integrators/linear_algebra/cholesky_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "integrators/linear_algebra/cholmod_handles.hpp"
+#include "integrators/linear_algebra/cholmod_threads.hpp"
+
+namespace xshell {
+
+namespace {
+
+bool same_pattern(const Eigen::SparseMatrix<double>& A, const std::vector<int>& outer,
+                  const std::vector<int>& inner) {
+  if (static_cast<size_t>(A.cols()) + 1 != outer.size()) return false;
+  if (static_cast<size_t>(A.nonZeros()) != inner.size()) return false;
+  return std::equal(outer.begin(), outer.end(), A.outerIndexPtr()) &&
+         std::equal(inner.begin(), inner.end(), A.innerIndexPtr());
+}
+
+}  // namespace
+
+// CHOLMOD factorizes P A P^T for its fill-reducing permutation P. Handed the
+// upper triangle of A, cholmod_factorize first builds tril(P A P^T) in new
+// storage (a transpose and an allocation, about a sixth of a factorization
+// here). So the solver keeps tril(P A P^T) itself, filled straight from the
+// input through a precomputed scatter map, and hands it to a factor analyzed
+// with the natural ordering (the permutation is then ours): CHOLMOD uses it
+// in place. Solves apply P to the right-hand side and P^T to the solution.
+struct CholeskySolver::Impl {
+  std::unique_ptr<CholmodCommon> common = std::make_unique<CholmodCommon>();
+  CholmodFactor factor;
+  CholmodDense x{*common}, y{*common}, e{*common};  // cholmod_solve2 workspaces
+
+  // Pattern of the last analyzed input, to detect a change.
+  std::vector<int> source_outer, source_inner;
+  // tril(P A P^T) plus the full diagonal, in CHOLMOD's (stype = -1) layout.
+  Eigen::SparseMatrix<double> lower;
+  std::vector<int> permutation;  // P: row k of P A P^T is row permutation[k] of A
+  std::vector<int> scatter;      // input value k -> index in lower, or -1 (lower triangle of A)
+  std::vector<int> diagonal;     // unknown j -> index of its diagonal entry in lower
+  Eigen::VectorXd permuted;      // solve workspace
+  bool ready = false;
+  CholeskyStats stats;
+
+  void analyze(const Eigen::SparseMatrix<double>& A);
+  void fill(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd* shift);
+};
+
+namespace {
+
+// Upper triangle of A's pattern plus the full diagonal.
+Eigen::SparseMatrix<double> upper_pattern(const Eigen::SparseMatrix<double>& A) {
+  const int n = static_cast<int>(A.cols());
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<size_t>(A.nonZeros()) / 2 + static_cast<size_t>(n));
+  for (int j = 0; j < n; ++j) {
+    entries.emplace_back(j, j, 0.0);
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it)
+      if (it.row() < j) entries.emplace_back(static_cast<int>(it.row()), j, 0.0);
+  }
+  Eigen::SparseMatrix<double> upper(n, n);
+  upper.setFromTriplets(entries.begin(), entries.end());
+  upper.makeCompressed();
+  return upper;
+}
+
+// CHOLMOD's fill-reducing permutation (with its postordering) for the
+// symmetric matrix whose upper triangle is `upper`.
+std::vector<int> fill_reducing_permutation(Eigen::SparseMatrix<double>& upper, cholmod_common* c) {
+  cholmod_sparse view = sparse_view(upper, SymmetricStorage::Upper);
+  cholmod_factor* L = nullptr;
+  {
+    const CholmodThreads threads;
+    L = cholmod_analyze(&view, c);
+  }
+  if (L == nullptr) throw std::runtime_error("cholmod_analyze failed");
+  const int* perm = static_cast<const int*>(L->Perm);
+  std::vector<int> permutation(perm, perm + L->n);
+  cholmod_free_factor(&L, c);
+  return permutation;
+}
+
+// A factor of the already permuted matrix whose lower triangle is `lower`:
+// natural ordering, no further postordering.
+cholmod_factor* analyze_in_order(Eigen::SparseMatrix<double>& lower, cholmod_common* c) {
+  const int nmethods = c->nmethods, ordering = c->method[0].ordering, postorder = c->postorder;
+  c->nmethods = 1;
+  c->method[0].ordering = CHOLMOD_NATURAL;
+  c->postorder = 0;
+  cholmod_sparse view = sparse_view(lower, SymmetricStorage::Lower);
+  cholmod_factor* L = nullptr;
+  {
+    const CholmodThreads threads;
+    L = cholmod_analyze(&view, c);
+  }
+  c->nmethods = nmethods;
+  c->method[0].ordering = ordering;
+  c->postorder = postorder;
+  if (L == nullptr) throw std::runtime_error("cholmod_analyze failed");
+  const int* perm = static_cast<const int*>(L->Perm);
+  for (size_t k = 0; k < L->n; ++k)
+    if (perm[k] != static_cast<int>(k)) {
+      cholmod_free_factor(&L, c);
+      throw std::logic_error("cholmod_analyze permuted a matrix given in natural order");
+    }
+  return L;
+}
+
+}  // namespace
+
+void CholeskySolver::Impl::analyze(const Eigen::SparseMatrix<double>& A) {
+  const int n = static_cast<int>(A.cols());
+  factor.reset();
+  ready = false;
+  Eigen::SparseMatrix<double> upper = upper_pattern(A);
+  permutation = fill_reducing_permutation(upper, common->get());
+  std::vector<int> inverse(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) inverse[static_cast<size_t>(permutation[static_cast<size_t>(k)])] = k;
+
+  // Entry (r, c) of A's upper triangle is entry (inverse[r], inverse[c]) of
+  // P A P^T; its lower triangle keeps the larger index as the row.
+  auto permuted_entry = [&](int row, int col) {
+    const int a = inverse[static_cast<size_t>(row)], b = inverse[static_cast<size_t>(col)];
+    return std::make_pair(std::max(a, b), std::min(a, b));
+  };
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<size_t>(upper.nonZeros()));
+  for (int j = 0; j < n; ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(upper, j); it; ++it) {
+      const auto [row, col] = permuted_entry(static_cast<int>(it.row()), j);
+      entries.emplace_back(row, col, 0.0);
+    }
+  lower.resize(n, n);
+  lower.setFromTriplets(entries.begin(), entries.end());
+  lower.makeCompressed();
+
+  auto position = [&](int row, int col) {
+    const auto [r, c] = permuted_entry(row, col);
+    const int* begin = lower.innerIndexPtr() + lower.outerIndexPtr()[c];
+    const int* end = lower.innerIndexPtr() + lower.outerIndexPtr()[c + 1];
+    return static_cast<int>(std::lower_bound(begin, end, r) - lower.innerIndexPtr());
+  };
+  scatter.assign(static_cast<size_t>(A.nonZeros()), -1);
+  diagonal.resize(static_cast<size_t>(n));
+  for (int j = 0; j < n; ++j) {
+    diagonal[static_cast<size_t>(j)] = position(j, j);
+    for (int k = A.outerIndexPtr()[j]; k < A.outerIndexPtr()[j + 1]; ++k) {
+      const int row = A.innerIndexPtr()[k];
+      if (row <= j) scatter[static_cast<size_t>(k)] = position(row, j);
+    }
+  }
+  source_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + n + 1);
+  source_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+  permuted.resize(n);
+
+  factor = CholmodFactor(analyze_in_order(lower, common->get()), *common);
+  ++stats.analyses;
+}
+
+void CholeskySolver::Impl::fill(const Eigen::SparseMatrix<double>& A,
+                                const Eigen::VectorXd* shift) {
+  double* values = lower.valuePtr();
+  std::fill(values, values + lower.nonZeros(), 0.0);
+  const double* source = A.valuePtr();
+  for (size_t k = 0; k < scatter.size(); ++k)
+    if (scatter[k] >= 0) values[scatter[k]] += source[k];
+  if (shift != nullptr)
+    for (size_t j = 0; j < diagonal.size(); ++j)
+      values[diagonal[j]] += (*shift)[static_cast<Eigen::Index>(j)];
+}
+
+CholeskySolver::CholeskySolver() : impl_(std::make_unique<Impl>()) {}
+CholeskySolver::~CholeskySolver() = default;
+CholeskySolver::CholeskySolver(CholeskySolver&&) noexcept = default;
+CholeskySolver& CholeskySolver::operator=(CholeskySolver&&) noexcept = default;
+
+FactorizationStatus CholeskySolver::factorize(const Eigen::SparseMatrix<double>& A,
+                                              const Eigen::VectorXd* diagonal_shift) {
+  if (A.rows() != A.cols()) throw std::invalid_argument("CholeskySolver: matrix is not square");
+  if (!A.isCompressed()) throw std::invalid_argument("CholeskySolver: matrix is not compressed");
+  if (diagonal_shift != nullptr && diagonal_shift->size() != A.cols())
+    throw std::invalid_argument("CholeskySolver: shift has the wrong size");
+  Impl& s = *impl_;
+  if (!s.factor || !same_pattern(A, s.source_outer, s.source_inner)) s.analyze(A);
+  s.ready = false;
+  s.fill(A, diagonal_shift);
+  const double* values = s.lower.valuePtr();
+  if (!std::all_of(values, values + s.lower.nonZeros(), [](double v) { return std::isfinite(v); }))
+    return FactorizationStatus::NonFinite;
+
+  cholmod_sparse view = sparse_view(s.lower, SymmetricStorage::Lower);
+  cholmod_common* c = s.common->get();
+  ++s.stats.factorizations;
+  int ok = 0;
+  {
+    const CholmodThreads threads;
+    ok = cholmod_factorize(&view, s.factor.get(), c);
+  }
+  if (c->status == CHOLMOD_NOT_POSDEF || s.factor.get()->minor < s.factor.get()->n) {
+    ++s.stats.failed_factorizations;
+    return FactorizationStatus::NotPositiveDefinite;
+  }
+  if (!ok || c->status < CHOLMOD_OK) throw std::runtime_error("cholmod_factorize failed");
+  s.ready = true;
+  return FactorizationStatus::PositiveDefinite;
+}
+
+bool CholeskySolver::factorized() const { return impl_->ready; }
+
+void CholeskySolver::solve(const double* b, double* x) {
+  Impl& s = *impl_;
+  if (!s.ready) throw std::logic_error("CholeskySolver::solve without a successful factorization");
+  const Eigen::Index n = s.lower.cols();
+  for (Eigen::Index k = 0; k < n; ++k) s.permuted[k] = b[s.permutation[static_cast<size_t>(k)]];
+  cholmod_dense B = dense_view(s.permuted);
+  {
+    const CholmodThreads threads;
+    if (!cholmod_solve2(CHOLMOD_A, s.factor.get(), &B, nullptr, s.x.handle(), nullptr, s.y.handle(),
+                        s.e.handle(), s.common->get()))
+      throw std::runtime_error("cholmod_solve2 failed");
+  }
+  const double* solution = static_cast<const double*>(s.x.get()->x);
+  for (Eigen::Index k = 0; k < n; ++k) x[s.permutation[static_cast<size_t>(k)]] = solution[k];
+  ++s.stats.solves;
+}
+
+Eigen::VectorXd CholeskySolver::solve(const Eigen::VectorXd& b) {
+  Eigen::VectorXd x(b.size());
+  solve(b.data(), x.data());
+  return x;
+}
+
+Eigen::Index CholeskySolver::size() const { return impl_->lower.cols(); }
+
+const CholeskyStats& CholeskySolver::stats() const { return impl_->stats; }
+
+}  // namespace xshell

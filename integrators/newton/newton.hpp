@@ -1,0 +1,151 @@
+// Statics by Newton's method: find q with grad E(q) = 0 using KINSOL.
+//
+// One Newton iteration is:
+//   1. objective.rebase()  (re-express the unknowns around the current
+//      configuration; the Hessian formulas of the rod model are exact only
+//      right after it, so every iteration starts right after one: before
+//      the first, and after each step, where the gradient of the rebased
+//      state serves the convergence test and the next iteration alike),
+//   2. one KINSOL iteration on F(q) = grad E(q) (KINSetNumMaxIters(1), one
+//      KINSol call per iteration on the same KINSOL memory) with a fresh
+//      Jacobian (KINSetMaxSetupCalls(1)): KINSOL evaluates F and calls the
+//      linear solver's setup, which factorizes the Hessian with CHOLMOD
+//      through a custom SUNLinearSolver (newton_system.hpp).
+//   3. the step: by default (LineSearch::Energy) the setup hands the
+//      factorization back and the step p = -K^-1 g is backtracked on the
+//      energy (descent_step.hpp); with LineSearch::Kinsol* KINSOL takes it
+//      with its own line search (KIN_LINESEARCH, on 1/2 |diag(w) F|^2).
+// KINSOL's function scaling is the objective's gradient weights w, so that
+// its own stopping test max_i |w_i F_i| <= tolerance is ours; the driver
+// checks the gradient measure before every iteration (a converged start
+// does no iteration at all).
+//
+// An indefinite H is shifted by tau (|H|/|M|) M with tau growing x4 from
+// 1e-8 (shifted_factorization.hpp), as in the reference implementation;
+// the shifted step is an energy-descent direction. Newton can still
+// converge to saddles (e.g. from a symmetric start): every result reports
+// `stable`, true only when an unshifted LL^T of the final Hessian succeeds.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "integrators/linear_algebra/cholesky_solver.hpp"
+#include "integrators/common/objective.hpp"
+#include "integrators/linear_algebra/shifted_factorization.hpp"
+
+namespace xshell {
+
+// How iterations are globalized (which function the backtracking watches).
+// Measured (tests/integrators/test_newton.cpp and the 4x4 linkage grid
+// under gravity, 444 unknowns): KINSOL's merit line search creeps where
+// |g| is much more nonlinear than E (stiff stretching, large rotations,
+// curved valleys): extended Rosenbrock 232 iterations vs 22, buckled
+// column 47 vs 15, linkage grid > 100 (then KIN_LINESEARCH_NONCONV) vs 5.
+enum class LineSearch {
+  // Default. Every iteration backtracks on the energy (Armijo), as the
+  // reference implementation does; KINSOL provides the iteration (residual,
+  // Jacobian setup through the CHOLMOD linear solver) but not the step.
+  Energy,
+  // Iterations with a positive definite Hessian: KINSOL's line search on
+  // the merit function 1/2 |w g|^2. Iterations whose Hessian had to be
+  // shifted: the energy line search, because KINSOL rejects energy-descent
+  // steps that do not reduce |g|.
+  KinsolWithEnergyFallback,
+  // Every iteration through KINSOL's line search, shifted or not (stalls
+  // at indefinite Hessians; kept for comparison).
+  Kinsol,
+};
+
+struct NewtonOptions {
+  double gradient_tolerance = 2e-8;  // converged when max_i |w_i g_i| <= this (dimensionless)
+  int max_iterations = 100;
+  // Largest step taken (2-norm, in the units of the unknowns); longer
+  // Newton steps are scaled down (KINSetMaxNewtonStep, and the energy line
+  // search). KINSOL's default (1000 |q0|) is meaningless for unknowns that
+  // rebase() resets.
+  double max_step = 1e3;
+  // Scaled step tolerance (KINSetScaledStepTol, and the same test after an
+  // energy line search step): a step with max_i |dq_i| / (1 + |q_i|) below
+  // it means the gradient cannot be reduced further (its round-off floor
+  // is above gradient_tolerance): the solve stops with LineSearchFailed.
+  double scaled_step_tolerance = 1e-14;
+  ShiftOptions shift;  // handling of indefinite Hessians
+  LineSearch line_search = LineSearch::Energy;
+};
+
+enum class NewtonStatus {
+  Converged,  // gradient measure <= tolerance
+  MaxIterations,
+  LinearSolverFailed,  // the Hessian could not be factorized, even shifted
+  LineSearchFailed,    // no acceptable step (either line search), stagnation at the
+                       // round-off floor, or the objective rejected every trial point
+  NonFinite,           // NaN/inf in the energy, gradient or Hessian
+  Interrupted,         // the stop flag was raised
+};
+
+const char* to_string(NewtonStatus status);
+
+// One per iteration, and one for the initial state (iteration 0).
+struct NewtonReport {
+  int iteration = 0;    // iterations done
+  double energy = 0.0;  // after the iteration
+  double gradient_measure = 0.0;
+  double step_norm = 0.0;           // max_i |dq_i| of the step taken (unknowns before the next rebase)
+  long factorizations = 0;          // numeric Cholesky factorizations in this iteration
+  bool shifted = false;             // the Hessian was indefinite and had to be shifted
+  bool energy_line_search = false;  // the step was globalized on the energy (not by KINSOL)
+  double shift = 0.0;               // coefficient of M in the shift (0 if none)
+  double seconds = 0.0;             // wall time of the iteration
+  double hessian_seconds = 0.0;        // of which Hessian assembly
+  double factorization_seconds = 0.0;  // and numeric factorizations (shifted retries included)
+};
+
+struct NewtonCallbacks {
+  std::function<void(const NewtonReport&)> on_iteration;  // optional
+  const std::atomic<bool>* stop = nullptr;                // optional; checked before each iteration
+};
+
+struct NewtonResult {
+  NewtonStatus status = NewtonStatus::MaxIterations;
+  std::string reason;             // one line
+  int iterations = 0;             // completed iterations (a failed one is not counted)
+  double gradient_measure = 0.0;  // at the final state
+  double energy = 0.0;
+  bool stable = false;      // unshifted LL^T of the final Hessian succeeded
+  long factorizations = 0;  // including the final stability check
+  double seconds = 0.0;
+  bool converged() const { return status == NewtonStatus::Converged; }
+};
+
+// A Newton solver bound to one objective (its size must not change). Keeps
+// the KINSOL memory and the CHOLMOD symbolic analysis across solve() calls,
+// e.g. over the steps of a deployment. On failure the objective is left at
+// the last iterate that was accepted (finite energy and gradient).
+class NewtonSolver {
+ public:
+  NewtonSolver(Objective& objective, NewtonOptions options = {});
+  ~NewtonSolver();
+  NewtonSolver(const NewtonSolver&) = delete;
+  NewtonSolver& operator=(const NewtonSolver&) = delete;
+
+  NewtonResult solve(const NewtonCallbacks& callbacks = {});
+
+  const NewtonOptions& options() const { return options_; }
+  // Counters of the CHOLMOD solver kept across solves (all zero for n = 0).
+  CholeskyStats cholesky_stats() const;
+
+ private:
+  struct Impl;
+  Objective& objective_;
+  NewtonOptions options_;
+  std::unique_ptr<Impl> impl_;
+};
+
+// One-off convenience: NewtonSolver(objective, options).solve(callbacks).
+NewtonResult solve_newton(Objective& objective, const NewtonOptions& options = {},
+                          const NewtonCallbacks& callbacks = {});
+
+}  // namespace xshell

@@ -1,0 +1,55 @@
+#include "integrators/stability/stability_analysis.hpp"
+
+#include "integrators/common/linkage_objective.hpp"
+
+namespace xshell {
+
+namespace {
+
+bool has_loads(const LinkageProblem& problem) {
+  if (problem.joint_loads().squaredNorm() > 0.0) return true;
+  for (const Eigen::VectorXd& f : problem.segment_loads())
+    if (f.squaredNorm() > 0.0) return true;
+  return false;
+}
+
+}  // namespace
+
+StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOptions& options) {
+  StabilityAnalysis out;
+  const Eigen::SparseMatrix<double> loaded_hessian = problem.free_hessian();
+  out.modes = lowest_eigenmodes(loaded_hessian, problem.free_mass(), options.modes);
+  out.loaded = has_loads(problem);
+  if (!options.buckling || !out.loaded) {
+    out.buckling.status = BucklingStatus::NoBuckling;
+    return out;
+  }
+  StaticsSetup unloaded_setup;
+  unloaded_setup.supports = problem.supports();
+  LinkageProblem unloaded(problem.linkage(), unloaded_setup);
+  LinkageObjective objective(unloaded);
+  const NewtonResult relaxed = solve_newton(objective, options.unloaded_newton);
+  out.unloaded_converged = relaxed.converged();
+  out.unloaded_reason = relaxed.reason;
+  if (!out.unloaded_converged || unloaded.num_free() != problem.num_free()) {
+    out.buckling.status = BucklingStatus::UnloadedUnstable;
+    return out;
+  }
+  out.buckling = linearized_buckling(unloaded.free_hessian(), loaded_hessian);
+  return out;
+}
+
+std::vector<std::vector<Eigen::Vector3d>> node_displacements(const LinkageProblem& problem,
+                                                             const Eigen::VectorXd& free_vector) {
+  const RodLinkage& l = problem.linkage();
+  Eigen::VectorXd reduced = Eigen::VectorXd::Zero(l.num_dofs());
+  for (int i = 0; i < problem.num_free(); ++i) reduced[problem.free_indices()[i]] = free_vector[i];
+  std::vector<std::vector<Eigen::Vector3d>> out(l.num_segments());
+  for (int s = 0; s < l.num_segments(); ++s) {
+    const Eigen::VectorXd v = l.full_velocity(s, reduced);
+    for (int n = 0; n < l.segment(s).num_nodes(); ++n) out[s].push_back(v.segment<3>(3 * n));
+  }
+  return out;
+}
+
+}  // namespace xshell

@@ -1,0 +1,41 @@
+// Stability of an equilibrium beyond yes/no: the lowest eigenpairs of the
+// free Hessian (mass-weighted, eigen_modes.hpp) and the linearized buckling
+// load factor of the current loads (buckling.hpp), whose unloaded stiffness
+// K_0 is the free Hessian at the equilibrium of the same linkage with the
+// same supports and no loads, found by Newton from the loaded state.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "integrators/stability/buckling.hpp"
+#include "integrators/stability/eigen_modes.hpp"
+#include "linkage/statics_problem.hpp"
+#include "integrators/newton/newton.hpp"
+
+namespace xshell {
+
+struct StabilityOptions {
+  EigenModesOptions modes;          // how many eigenpairs (default 6)
+  bool buckling = true;             // also the buckling load factor (one more Newton solve)
+  NewtonOptions unloaded_newton;    // for the unloaded equilibrium
+};
+
+struct StabilityAnalysis {
+  EigenModes modes;                 // of H phi = lambda M phi at the loaded state
+  bool loaded = false;              // some load acts (else no buckling analysis)
+  bool unloaded_converged = false;  // the unloaded equilibrium was found
+  std::string unloaded_reason;
+  BucklingResult buckling;          // status UnloadedUnstable also when not converged
+};
+
+// problem: at its (loaded) equilibrium; its Hessian is reassembled.
+StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOptions& options = {});
+
+// Node displacements of every segment, [segment][node], for a vector over
+// the free unknowns (a mode): the translational part of J v.
+std::vector<std::vector<Eigen::Vector3d>> node_displacements(const LinkageProblem& problem,
+                                                             const Eigen::VectorXd& free_vector);
+
+}  // namespace xshell

@@ -1,0 +1,187 @@
+#include "integrators/deployment/constrained_newton.hpp"
+
+#include <doctest/doctest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <random>
+
+#include "integrators/deployment/deployment_fixtures.hpp"
+#include "finite_differences.hpp"
+#include "integrators/deployment/average_constraint.hpp"
+#include "integrators/common/linkage_objective.hpp"
+
+namespace xshell::test {
+
+
+namespace {
+
+// E = 1/2 q'Kq - f.q with a dense symmetric K (stored sparse).
+class Quadratic : public Objective {
+ public:
+  Quadratic(const Eigen::MatrixXd& K, const Eigen::VectorXd& f)
+      : K_(K.sparseView()), f_(f), q_(Eigen::VectorXd::Zero(f.size())) {}
+  Eigen::Index size() const override { return f_.size(); }
+  Eigen::VectorXd get() const override { return q_; }
+  void set(const Eigen::VectorXd& q) override { q_ = q; }
+  double energy() const override { return 0.5 * q_.dot(K_ * q_) - f_.dot(q_); }
+  Eigen::VectorXd gradient() const override { return K_ * q_ - f_; }
+  const Eigen::SparseMatrix<double>& hessian() override { return K_; }
+  Eigen::VectorXd gradient_weights() const override { return Eigen::VectorXd::Ones(size()); }
+  Eigen::VectorXd mass() const override { return Eigen::VectorXd::Ones(size()); }
+
+ private:
+  Eigen::SparseMatrix<double> K_;
+  Eigen::VectorXd f_, q_;
+};
+
+// Two averaged unknowns u, v (A = (u + v) / 2) and w:
+//   E = (u - v)^2 + (w^2 - A)^2 + A^2.
+// For A > 0, w = 0 is a saddle (d2E/dw2 = -4A) and the minima are w = +/- sqrt(A),
+// where E = A^2 and the torque dE/dA = 2A; at the saddle E = 2A^2, torque 4A.
+class Buckling : public Objective {
+ public:
+  Eigen::Index size() const override { return 3; }
+  Eigen::VectorXd get() const override { return q_; }
+  void set(const Eigen::VectorXd& q) override { q_ = q; }
+  double energy() const override {
+    const double u = q_[0], v = q_[1], w = q_[2], A = 0.5 * (u + v);
+    return (u - v) * (u - v) + (w * w - A) * (w * w - A) + A * A;
+  }
+  Eigen::VectorXd gradient() const override {
+    const double u = q_[0], v = q_[1], w = q_[2], A = 0.5 * (u + v), r = w * w - A;
+    const double dA = -2.0 * r + 2.0 * A;  // dE/dA at fixed u - v
+    return Eigen::Vector3d(2.0 * (u - v) + 0.5 * dA, -2.0 * (u - v) + 0.5 * dA, 4.0 * w * r);
+  }
+  const Eigen::SparseMatrix<double>& hessian() override {
+    const double w = q_[2], A = 0.5 * (q_[0] + q_[1]);
+    Eigen::Matrix3d H;
+    // d2/dA2 of r^2 + A^2 is 4; u, v enter A with weight 1/2.
+    const double aa = 0.25 * 4.0, aw = 0.5 * (-4.0 * w);
+    H << 2.0 + aa, -2.0 + aa, aw,  //
+        -2.0 + aa, 2.0 + aa, aw,   //
+        aw, aw, 12.0 * w * w - 4.0 * A;
+    H_ = H.sparseView(0.0, 0.0);
+    return H_;
+  }
+  Eigen::VectorXd gradient_weights() const override { return Eigen::VectorXd::Ones(3); }
+  Eigen::VectorXd mass() const override { return Eigen::VectorXd::Ones(3); }
+
+ private:
+  Eigen::VectorXd q_ = Eigen::Vector3d(0.5, 0.5, 0.0);
+  Eigen::SparseMatrix<double> H_;
+};
+
+// Solution (q, tau) of grad E = tau a, a.q = A for the quadratic, densely.
+std::pair<Eigen::VectorXd, double> kkt(const Eigen::MatrixXd& K, const Eigen::VectorXd& f,
+                                       const Eigen::VectorXd& a, double A) {
+  const Eigen::Index n = K.rows();
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n + 1, n + 1);
+  M.topLeftCorner(n, n) = K;
+  M.topRightCorner(n, 1) = -a;
+  M.bottomLeftCorner(1, n) = a.transpose();
+  Eigen::VectorXd rhs(n + 1);
+  rhs << f, A;
+  const Eigen::VectorXd x = M.fullPivLu().solve(rhs);
+  return {x.head(n), x[n]};
+}
+
+}  // namespace
+
+TEST_CASE(
+    "Constrained Newton: the Schur complement solves a quadratic in one step, with its "
+    "multiplier") {
+  std::mt19937 rng(3);
+  int cases = 0;
+  for (bool definite : {true, false}) {
+    CAPTURE(definite);
+    const int n = 7;
+    Eigen::MatrixXd R = Eigen::MatrixXd::Random(n, n);
+    Eigen::MatrixXd K = R * R.transpose() + Eigen::MatrixXd::Identity(n, n);
+    // Indefinite along the averaged direction only: K - c a a^T stays
+    // positive definite on the constraint's plane (a.q = const).
+    const AverageConstraint c(n, {1, 2, 4, 5}, {-1, 0, 0, 1}, 4, 0.0);
+    if (!definite) K -= 60.0 * c.coefficients() * c.coefficients().transpose() * 16.0;
+    const Eigen::VectorXd f = random_vector(n, rng);
+    Quadratic objective(K, f);
+    ConstrainedNewtonSolver solver(objective, c, NewtonOptions{});
+    const ConstrainedNewtonResult r = solver.solve(0.3);
+    CAPTURE(r.reason);
+    REQUIRE(r.converged());
+    CHECK(r.iterations == 1);
+    CHECK(r.stable);
+    CHECK(r.schur_iterations == (definite ? 1 : 0));
+    CHECK(r.null_space_iterations == (definite ? 0 : 1));
+    const auto [q, tau] = kkt(K, f, c.coefficients(), 0.3);
+    CHECK((objective.get() - q).norm() < 1e-10 * q.norm());
+    CHECK(r.multiplier == doctest::Approx(tau).epsilon(1e-9));
+    CHECK(c.value(objective.get()) == doctest::Approx(0.3).epsilon(1e-14));
+    // The path's tangent dq/dA: the KKT solution's derivative in A.
+    const Eigen::VectorXd t = solver.tangent();
+    const Eigen::VectorXd exact = (kkt(K, f, c.coefficients(), 0.3 + 1e-3).first -
+                                   kkt(K, f, c.coefficients(), 0.3 - 1e-3).first) /
+                                  2e-3;
+    CHECK((t - exact).norm() < 1e-8 * exact.norm());
+    CHECK(c.coefficients().dot(t) == doctest::Approx(1.0).epsilon(1e-12));
+    ++cases;
+  }
+  CHECK(cases == 2);
+}
+
+TEST_CASE("Constrained Newton leaves a symmetric saddle along negative curvature, or reports it") {
+  int cases = 0;
+  for (int escapes : {0, 2}) {
+    CAPTURE(escapes);
+    Buckling objective;
+    const AverageConstraint c(3, {0, 1}, {-1, 0}, 2, 0.0);
+    NewtonOptions options;
+    options.gradient_tolerance = 1e-12;
+    ConstrainedNewtonSolver solver(objective, c, options);
+    solver.max_saddle_escapes = escapes;
+    const ConstrainedNewtonResult r = solver.solve(1.0);  // from A = 0.5, w = 0
+    CAPTURE(r.reason);
+    REQUIRE(r.converged());
+    const Eigen::VectorXd q = objective.get();
+    if (escapes == 0) {
+      CHECK_FALSE(r.stable);  // the saddle w = 0, reported as such
+      CHECK(q[2] == 0.0);
+      CHECK(r.energy == doctest::Approx(2.0));
+      CHECK(r.multiplier == doctest::Approx(4.0));
+      CHECK(r.saddle_escapes == 0);
+    } else {
+      CHECK(r.stable);
+      CHECK(r.saddle_escapes == 1);
+      CHECK(q[2] == doctest::Approx(1.0).epsilon(1e-10));  // the side of the positive largest entry
+      CHECK(r.energy == doctest::Approx(1.0));
+      CHECK(r.multiplier == doctest::Approx(2.0).epsilon(1e-9));
+    }
+    CHECK(0.5 * (q[0] + q[1]) == doctest::Approx(1.0).epsilon(1e-14));
+    ++cases;
+  }
+  CHECK(cases == 2);
+}
+
+TEST_CASE(
+    "Constrained Newton on a mechanism: the opening mode is free, the constrained problem stable") {
+  LinkageProblem problem = flat_mechanism(3);
+  LinkageObjective objective(problem);
+  const AverageConstraint c = average_opening_angle_constraint(problem);
+  NewtonOptions options;
+  options.gradient_tolerance = 1e-10;
+  ConstrainedNewtonSolver solver(objective, c, options);
+  const double target = c.value(problem.free_dofs()) + 0.3;
+  Eigen::VectorXd q = problem.free_dofs();
+  c.project(q, target);
+  problem.set_free_dofs(q);
+  const ConstrainedNewtonResult r = solver.solve(target);
+  CAPTURE(r.reason);
+  REQUIRE(r.converged());
+  // H is singular (up to round-off): LL^T may or may not succeed, and either
+  // step then converges.
+  CHECK(r.schur_iterations + r.null_space_iterations == r.iterations);
+  CHECK(r.stable);
+  CHECK(std::abs(r.multiplier) < 1e-9);
+  CHECK(problem.energy().total() < 1e-12);
+}
+
+}  // namespace xshell::test

@@ -1,0 +1,255 @@
+#include "integrators/deployment/deployment.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "integrators/deployment/deployment_fixtures.hpp"
+#include "integrators/deployment/average_constraint.hpp"
+
+namespace xshell::test {
+
+
+namespace {
+
+DeploymentOptions tight(DeploymentSolver solver, double tolerance = 1e-10) {
+  DeploymentOptions o;
+  o.solver = solver;
+  o.newton.gradient_tolerance = tolerance;
+  o.newton.max_iterations = 100;
+  o.dynamics.gradient_tolerance = tolerance;
+  // The overdamped flow: each step starts near the next equilibrium, and the
+  // second-order form would spend thousands of steps on the stiff
+  // stretching modes' oscillations.
+  o.dynamics.form = DynamicsForm::FirstOrder;
+  o.dynamics.max_steps = 20000;
+  return o;
+}
+
+DeploymentPlan average_plan(double angle, int steps) {
+  DeploymentPlan p;
+  p.average_angle = angle;
+  p.steps = steps;
+  return p;
+}
+
+DeploymentResult run(LinkageProblem& problem, const DeploymentPlan& plan,
+                     const DeploymentOptions& options) {
+  const DeploymentResult r = deploy(problem, plan, options);
+  CAPTURE(r.reason);
+  REQUIRE(r.completed());
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "Deployment by the average angle: every step converged on the constraint, torque positive") {
+  LinkageProblem problem = dome_problem(3);
+  const double start = average_opening_angle(problem.linkage());
+  const DeploymentResult r =
+      run(problem, average_plan(start + 0.4, 8), tight(DeploymentSolver::Newton));
+  CHECK(r.steps.size() == 9);  // step 0 and 8 steps
+  int rows = 0;
+  for (const DeploymentStep& s : r.steps) {
+    CAPTURE(s.step);
+    CHECK(s.step == rows);
+    CHECK(s.average_angle == doctest::Approx(start + 0.4 * s.fraction).epsilon(1e-12));
+    CHECK(s.gradient_measure <= 1e-10);
+    if (s.step > 0) {
+      CHECK(s.torque > 0.0);  // the dome resists opening
+      CHECK(s.stable);
+      CHECK(s.iterations <= 8);  // a few Newton iterations per step
+    }
+    ++rows;
+  }
+  CHECK(rows == 9);
+  CHECK(r.steps[0].energy.total() == doctest::Approx(0.0));  // stress-free as drawn
+  CHECK(r.steps.back().energy.total() > 0.0);
+  CHECK(average_opening_angle(problem.linkage()) == doctest::Approx(start + 0.4).epsilon(1e-12));
+}
+
+TEST_CASE(
+    "The torque is the derivative of the equilibrium energy along the path (central differences)") {
+  int compared = 0;
+  for (DeploymentSolver solver : {DeploymentSolver::Newton, DeploymentSolver::Dynamics}) {
+    CAPTURE(solver == DeploymentSolver::Newton);
+    LinkageProblem problem = dome_problem(3);
+    const double start = average_opening_angle(problem.linkage());
+    const DeploymentOptions options = tight(solver, 1e-9);
+    for (double opening : {0.25, 0.5}) {
+      const DeploymentResult r = run(problem, average_plan(start + opening, 4), options);
+      const double angle = r.steps.back().average_angle, torque = r.steps.back().torque;
+      const double h = 1e-3;
+      LinkageProblem plus = problem, minus = problem;
+      const double e_plus =
+          run(plus, average_plan(angle + h, 1), options).steps.back().energy.total();
+      const double e_minus =
+          run(minus, average_plan(angle - h, 1), options).steps.back().energy.total();
+      const double derivative = (e_plus - e_minus) / (2.0 * h);
+      CAPTURE(opening);
+      CAPTURE(torque);
+      CAPTURE(derivative);
+      CHECK(torque > 0.0);
+      CHECK(std::abs(torque - derivative) <= 1e-5 * std::abs(torque));
+      ++compared;
+    }
+  }
+  CHECK(compared == 4);
+}
+
+TEST_CASE("Prescribed angles: the joints reach their targets and the torque is dE/dtheta") {
+  // Actuate the centre joint and one corner; the others follow.
+  const int n = 3;
+  StaticsSetup setup;
+  setup.supports = {{4, {SupportDof::Position, SupportDof::Orientation, SupportDof::OpeningAngle}},
+                    {0, {SupportDof::OpeningAngle}}};
+  const LinkageProblem start(RodLinkage(dome_grid(n, 0.8), lath_material(RestShape::Input)), setup);
+  const int centre = start.linkage().topology().joint_of_vertex[4],
+            corner = start.linkage().topology().joint_of_vertex[0];
+  const double a0 = start.linkage().joint(centre).opening_angle(),
+               c0 = start.linkage().joint(corner).opening_angle();
+  auto plan = [&](double delta) {
+    DeploymentPlan p;
+    p.joint_angles = {{centre, a0 + delta}, {corner, c0 + 0.5 * delta}};
+    p.steps = 3;
+    return p;
+  };
+  const DeploymentOptions options = tight(DeploymentSolver::Newton, 1e-9);
+  LinkageProblem problem = start;
+  const DeploymentResult r = run(problem, plan(0.3), options);
+  CHECK(r.steps.size() == 4);
+  CHECK(problem.linkage().joint(centre).opening_angle() ==
+        doctest::Approx(a0 + 0.3).epsilon(1e-14));
+  CHECK(problem.linkage().joint(corner).opening_angle() ==
+        doctest::Approx(c0 + 0.15).epsilon(1e-14));
+  // theta, the mean of the prescribed angles, moves by 0.225 over the path;
+  // compare the torque with the equilibrium energies at delta 0.3 +/- h.
+  const double h = 1e-3, dtheta = 0.75 * h;
+  LinkageProblem plus = start, minus = start;
+  const double e_plus = run(plus, plan(0.3 + h), options).steps.back().energy.total();
+  const double e_minus = run(minus, plan(0.3 - h), options).steps.back().energy.total();
+  const double derivative = (e_plus - e_minus) / (2.0 * dtheta);
+  const double torque = r.steps.back().torque;
+  CAPTURE(torque);
+  CAPTURE(derivative);
+  CHECK(std::abs(torque) > 0.0);
+  CHECK(std::abs(torque - derivative) <= 1e-5 * std::abs(torque));
+}
+
+TEST_CASE(
+    "A symmetric linkage deploys symmetrically, and closing it back returns the start energy") {
+  const int n = 5;
+  LinkageProblem problem = dome_problem(n, 0.6);
+  const double start = average_opening_angle(problem.linkage());
+  const auto start_angles = problem.opening_angles();
+  const DeploymentOptions options = tight(DeploymentSolver::Newton, 1e-9);
+  const DeploymentResult open = run(problem, average_plan(start + 0.45, 6), options);
+  const double diagonal = problem.length_scale();
+  const auto x = problem.vertex_positions();
+  const auto alpha = problem.opening_angles();
+  int pairs = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      // The mirror x <-> y maps vertex (i, j) to (j, i).
+      const Eigen::Vector3d a = x[i * n + j], b = x[j * n + i];
+      CHECK((Eigen::Vector3d(b.y(), b.x(), b.z()) - a).norm() < 1e-8 * diagonal);
+      CHECK(std::abs(*alpha[i * n + j] - *alpha[j * n + i]) < 1e-8);
+      ++pairs;
+    }
+  CHECK(pairs == n * n);
+  // It really moved: the corners came closer along one diagonal.
+  CHECK((x[0] - x[n * n - 1]).norm() < 0.95 * (problem.linkage().graph().vertices[0] -
+                                               problem.linkage().graph().vertices[n * n - 1])
+                                                  .norm());
+  const double e_start = open.steps.front().energy.total(),
+               e_open = open.steps.back().energy.total();
+  CHECK(e_open > 0.0);
+  const DeploymentResult close = run(problem, average_plan(start, 6), options);
+  CHECK(close.steps.back().average_angle == doctest::Approx(start).epsilon(1e-13));
+  CHECK(std::abs(close.steps.back().energy.total() - e_start) <= 1e-9 * e_open);
+  // Back to the start: every joint at its input angle.
+  const auto end_angles = problem.opening_angles();
+  int joints = 0;
+  for (size_t v = 0; v < end_angles.size(); ++v) {
+    CHECK(std::abs(*end_angles[v] - *start_angles[v]) < 1e-7);
+    ++joints;
+  }
+  CHECK(joints == n * n);
+}
+
+TEST_CASE("Newton and damped dynamics deploy to the same state") {
+  LinkageProblem by_newton = dome_problem(3), by_dynamics = dome_problem(3);
+  const double start = average_opening_angle(by_newton.linkage());
+  const DeploymentPlan plan = average_plan(start + 0.35, 4);
+  const DeploymentResult rn = run(by_newton, plan, tight(DeploymentSolver::Newton, 1e-8));
+  const DeploymentResult rd = run(by_dynamics, plan, tight(DeploymentSolver::Dynamics, 1e-8));
+  const double diagonal = by_newton.length_scale();
+  const auto xn = by_newton.vertex_positions(), xd = by_dynamics.vertex_positions();
+  const auto an = by_newton.opening_angles(), ad = by_dynamics.opening_angles();
+  int vertices = 0, angles = 0;
+  for (size_t v = 0; v < xn.size(); ++v) {
+    CHECK((xn[v] - xd[v]).norm() <= 1e-6 * diagonal);
+    ++vertices;
+    if (an[v]) {
+      CHECK(std::abs(*an[v] - *ad[v]) <= 1e-6);
+      ++angles;
+    }
+  }
+  CHECK(vertices == 9);
+  CHECK(angles == 9);
+  const double en = rn.steps.back().energy.total(), ed = rd.steps.back().energy.total();
+  CHECK(std::abs(en - ed) <= 1e-7 * std::abs(en));
+  CHECK(rn.steps.back().torque == doctest::Approx(rd.steps.back().torque).epsilon(1e-5));
+  CHECK(rd.steps.back().stable);
+}
+
+TEST_CASE(
+    "A flat grid of straight rods is a mechanism: it deploys without energy through the null-space "
+    "step") {
+  LinkageProblem problem = flat_mechanism(3);
+  const double start = average_opening_angle(problem.linkage());
+  const DeploymentResult r =
+      run(problem, average_plan(start + 0.5, 5), tight(DeploymentSolver::Newton));
+  int steps = 0;
+  for (const DeploymentStep& s : r.steps) {
+    CHECK(std::abs(s.energy.total()) < 1e-12);
+    CHECK(std::abs(s.torque) < 1e-9);
+    CHECK(s.stable);  // on the constraint, the mechanism mode is gone
+    ++steps;
+  }
+  CHECK(steps == 6);
+  // A rhombic grid: every joint at the average.
+  for (int j = 0; j < problem.linkage().num_joints(); ++j)
+    CHECK(problem.linkage().joint(j).opening_angle() == doctest::Approx(start + 0.5).epsilon(1e-8));
+}
+
+TEST_CASE("A failing step is halved and retried, the deployment reports a step it cannot take") {
+  LinkageProblem problem = dome_problem(3);
+  const double start = average_opening_angle(problem.linkage());
+  DeploymentOptions options = tight(DeploymentSolver::Newton);
+  options.newton.max_iterations =
+      4;  // too few for a whole step of 0.4 rad (5), enough for smaller ones
+  const DeploymentResult r = deploy(problem, average_plan(start + 0.4, 1), options);
+  CAPTURE(r.reason);
+  REQUIRE(r.completed());
+  CHECK(r.failed_attempts >= 1);
+  CHECK(r.steps.size() >= 3);
+  CHECK(r.steps.back().fraction == 1.0);
+  int halved = 0;
+  for (const DeploymentStep& s : r.steps) halved += s.halvings;
+  CHECK(halved == r.failed_attempts);
+
+  LinkageProblem again = dome_problem(3);
+  options.newton.max_iterations = 1;
+  options.max_halvings = 2;
+  const DeploymentResult failed = deploy(again, average_plan(start + 0.4, 1), options);
+  CHECK(failed.status == DeploymentStatus::StepFailed);
+  CHECK(failed.failed_attempts == 3);
+  CHECK(failed.steps.size() == 1);  // only the start
+  // Left at the last accepted state, the start.
+  CHECK(average_opening_angle(again.linkage()) == doctest::Approx(start).epsilon(1e-14));
+}
+
+}  // namespace xshell::test

@@ -1,0 +1,148 @@
+#include <doctest/doctest.h>
+
+#include <random>
+
+#include "integrators/linear_algebra/cholesky_solver.hpp"
+#include "integrators/linear_algebra/shifted_factorization.hpp"
+
+namespace xshell::test {
+
+using xshell::CholeskySolver;
+using xshell::FactorizationStatus;
+
+namespace {
+
+// A random sparse symmetric matrix with both triangles stored: a random
+// pattern with ~`per_column` off-diagonal entries per column, diagonal
+// `diagonal_boost` + the row's absolute sum (strictly diagonally dominant,
+// hence SPD, when diagonal_boost > 0).
+Eigen::SparseMatrix<double> random_symmetric(int n, int per_column, double diagonal_boost,
+                                             unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> row(0, n - 1);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::VectorXd row_sum = Eigen::VectorXd::Zero(n);
+  for (int j = 0; j < n; ++j)
+    for (int k = 0; k < per_column; ++k) {
+      const int i = row(rng);
+      if (i == j) continue;
+      const double v = value(rng);
+      entries.emplace_back(i, j, v);
+      entries.emplace_back(j, i, v);
+      row_sum[i] += std::abs(v);
+      row_sum[j] += std::abs(v);
+    }
+  for (int i = 0; i < n; ++i) entries.emplace_back(i, i, row_sum[i] + diagonal_boost);
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  A.makeCompressed();
+  return A;
+}
+
+}  // namespace
+
+TEST_CASE("CholeskySolver solves a random SPD system and reuses its analysis") {
+  const int n = 400;
+  Eigen::SparseMatrix<double> A = random_symmetric(n, 4, 0.1, 7);
+  std::mt19937 rng(8);
+  std::normal_distribution<double> normal;
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = normal(rng);
+
+  CholeskySolver solver;
+  REQUIRE(solver.factorize(A) == FactorizationStatus::PositiveDefinite);
+  const Eigen::VectorXd x = solver.solve(b);
+  const double residual = (A * x - b).norm() / b.norm();
+  INFO("relative residual " << residual);
+  CHECK(residual < 1e-10);
+  CHECK(solver.stats().analyses == 1);
+
+  // Same pattern, new values: numeric factorization only.
+  const int refactorizations = 5;
+  for (int k = 0; k < refactorizations; ++k) {
+    Eigen::SparseMatrix<double> B = A;
+    for (int j = 0; j < n; ++j) B.coeffRef(j, j) += 0.5 * (k + 1);
+    REQUIRE(solver.factorize(B) == FactorizationStatus::PositiveDefinite);
+    const Eigen::VectorXd y = solver.solve(b);
+    CHECK((B * y - b).norm() / b.norm() < 1e-10);
+  }
+  CHECK(solver.stats().analyses == 1);
+  CHECK(solver.stats().factorizations == 1 + refactorizations);
+  CHECK(solver.stats().solves == 1 + refactorizations);
+
+  // A diagonal shift through the same pattern equals factorizing A + D.
+  const Eigen::VectorXd shift = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+  REQUIRE(solver.factorize(A, &shift) == FactorizationStatus::PositiveDefinite);
+  Eigen::SparseMatrix<double> shifted = A;
+  for (int j = 0; j < n; ++j) shifted.coeffRef(j, j) += shift[j];
+  CHECK((shifted * solver.solve(b) - b).norm() / b.norm() < 1e-10);
+  CHECK(solver.stats().analyses == 1);
+
+  // A new pattern triggers a new analysis.
+  Eigen::SparseMatrix<double> C = random_symmetric(n, 5, 0.1, 9);
+  REQUIRE(solver.factorize(C) == FactorizationStatus::PositiveDefinite);
+  CHECK((C * solver.solve(b) - b).norm() / b.norm() < 1e-10);
+  CHECK(solver.stats().analyses == 2);
+}
+
+TEST_CASE("CholeskySolver reports indefinite and non-finite matrices") {
+  const int n = 50;
+  Eigen::SparseMatrix<double> A = random_symmetric(n, 3, 0.1, 11);
+  CholeskySolver solver;
+  REQUIRE(solver.factorize(A) == FactorizationStatus::PositiveDefinite);
+
+  // One negative eigenvalue direction: flip a diagonal entry.
+  Eigen::SparseMatrix<double> indefinite = A;
+  indefinite.coeffRef(17, 17) = -indefinite.coeff(17, 17);
+  CHECK(solver.factorize(indefinite) == FactorizationStatus::NotPositiveDefinite);
+  CHECK_FALSE(solver.factorized());
+  CHECK_THROWS_AS(solver.solve(Eigen::VectorXd::Ones(n)), std::logic_error);
+  CHECK(solver.stats().failed_factorizations == 1);
+
+  // A singular (positive semi-definite) matrix is not positive definite either.
+  Eigen::SparseMatrix<double> singular(2, 2);
+  singular.insert(0, 0) = 1.0;
+  singular.insert(0, 1) = 1.0;
+  singular.insert(1, 0) = 1.0;
+  singular.insert(1, 1) = 1.0;
+  singular.makeCompressed();
+  CholeskySolver small;
+  CHECK(small.factorize(singular) == FactorizationStatus::NotPositiveDefinite);
+
+  Eigen::SparseMatrix<double> nan = A;
+  nan.coeffRef(3, 3) = std::nan("");
+  CHECK(solver.factorize(nan) == FactorizationStatus::NonFinite);
+
+  // The factor object survives failures: the original matrix factorizes again.
+  REQUIRE(solver.factorize(A) == FactorizationStatus::PositiveDefinite);
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
+  CHECK((A * solver.solve(b) - b).norm() < 1e-10);
+  CHECK(solver.stats().analyses == 1);
+}
+
+TEST_CASE("factorize_with_shift makes an indefinite Hessian positive definite") {
+  const int n = 30;
+  Eigen::SparseMatrix<double> H = random_symmetric(n, 2, 0.5, 13);
+  H.coeffRef(5, 5) = -2.0;  // indefinite
+  const Eigen::VectorXd mass = Eigen::VectorXd::LinSpaced(n, 1.0, 3.0);
+  CholeskySolver solver;
+  const xshell::ShiftedFactorization f = xshell::factorize_with_shift(solver, H, mass);
+  REQUIRE(f.status == FactorizationStatus::PositiveDefinite);
+  CHECK(f.shifted);
+  CHECK(f.tau > 0.0);
+  CHECK(f.factorizations >= 2);
+  CHECK(f.factorizations == solver.stats().factorizations);
+  // The shift is the smallest of the tau sequence that works: tau/4 fails.
+  Eigen::VectorXd smaller = (f.shift / 4.0) * mass;
+  CHECK(solver.factorize(H, &smaller) == FactorizationStatus::NotPositiveDefinite);
+  CHECK_FALSE(xshell::is_positive_definite(solver, H));
+
+  Eigen::SparseMatrix<double> spd = random_symmetric(n, 2, 0.5, 14);
+  const xshell::ShiftedFactorization g = xshell::factorize_with_shift(solver, spd, mass);
+  CHECK(g.status == FactorizationStatus::PositiveDefinite);
+  CHECK_FALSE(g.shifted);
+  CHECK(g.factorizations == 1);
+}
+
+}  // namespace xshell::test

@@ -1,0 +1,136 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "integrators/beam_fixtures.hpp"
+#include "integrators/elastica.hpp"
+#include "integrators/grid_fixtures.hpp"
+#include "integrators/common/linkage_objective.hpp"
+#include "integrators/newton/newton.hpp"
+#include "linkage/statics_problem.hpp"
+
+namespace xshell::test {
+
+using xshell::test::lath_options;
+using xshell::test::square_grid;
+
+namespace {
+
+// The unit cantilever of beam_fixtures.hpp (E I = 1, clamped at vertex 0).
+LinkageProblem cantilever(int subdivisions, const Eigen::Vector3d& tip_force) {
+  return xshell::test::cantilever_beam(subdivisions, tip_force);
+}
+
+NewtonOptions tight(double tolerance = 1e-9) {
+  NewtonOptions n;
+  n.gradient_tolerance = tolerance;
+  n.max_iterations = 200;
+  n.line_search = LineSearch::Energy;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("Cantilever under a tip load matches the large-deflection elastica, converging with n_s") {
+  int levels = 0;
+  for (double alpha : {0.5, 1.0, 2.0, 4.0}) {
+    CAPTURE(alpha);
+    const test::ElasticaTip exact = test::cantilever_elastica(alpha);
+    // The clamp holds the first edge, so the free length falls short of L
+    // by a fraction of an edge: the error is first order in 1/n_s, and the
+    // Richardson extrapolation 2 v(2n) - v(n) removes it.
+    std::vector<double> deflection;
+    for (int n : {10, 20, 40}) {
+      CAPTURE(n);
+      LinkageProblem problem = cantilever(n, Eigen::Vector3d(0, 0, -alpha));
+      LinkageObjective objective(problem);
+      const NewtonResult result = solve_newton(objective, tight());
+      REQUIRE(result.converged());
+      CHECK(result.stable);
+      deflection.push_back(-problem.vertex_positions()[1].z());
+    }
+    const double e10 = std::abs(deflection[0] - exact.deflection), e20 = std::abs(deflection[1] - exact.deflection),
+                 e40 = std::abs(deflection[2] - exact.deflection);
+    CHECK(e20 < e10);
+    CHECK(e40 < e20);
+    CHECK(e40 / e20 == doctest::Approx(0.5).epsilon(0.2));
+    CHECK(e40 / exact.deflection < 0.05);
+    const double extrapolated = 2.0 * deflection[2] - deflection[1];
+    CHECK(std::abs(extrapolated - exact.deflection) < 2e-3 * exact.deflection);
+    ++levels;
+  }
+  CHECK(levels == 4);
+  // The reference itself against Bisshopp & Drucker's tabulated value.
+  CHECK(test::cantilever_elastica(1.0).deflection == doctest::Approx(0.30172).epsilon(1e-4));
+}
+
+TEST_CASE("Euler buckling of a clamped-free column: straight is stable below P_cr, unstable above") {
+  const double p_cr = M_PI * M_PI / 4.0;  // E I = 1, L = 1
+  int cases = 0;
+  for (double factor : {0.85, 1.15}) {
+    LinkageProblem problem = cantilever(40, Eigen::Vector3d(-factor * p_cr, 0, 0));
+    LinkageObjective objective(problem);
+    const NewtonResult result = solve_newton(objective, tight());
+    REQUIRE(result.converged());
+    // Still straight: the exactly axial load leaves no lateral force.
+    CHECK(std::abs(problem.vertex_positions()[1].z()) < 1e-12);
+    CHECK(result.stable == (factor < 1.0));
+    ++cases;
+  }
+  CHECK(cases == 2);
+}
+
+TEST_CASE("Linkage under gravity: converged below tolerance, symmetric, quadratic at the end") {
+  const int n = 4;
+  StaticsSetup setup;
+  setup.gravity = Eigen::Vector3d(0, 0, -9.81);
+  for (int corner : {0, n - 1, n * (n - 1), n * n - 1}) setup.supports.push_back({corner, {SupportDof::Position}});
+  LinkageProblem problem(RodLinkage(square_grid(n), lath_options()), setup);
+  LinkageObjective objective(problem);
+  std::vector<double> measures;
+  NewtonCallbacks callbacks;
+  callbacks.on_iteration = [&](const NewtonReport& r) { measures.push_back(r.gradient_measure); };
+  const NewtonResult result = solve_newton(objective, tight(1e-8), callbacks);
+  CAPTURE(result.reason);
+  CAPTURE(result.iterations);
+  REQUIRE(result.converged());
+  CHECK(result.stable);
+  CHECK(problem.gradient_measure() <= 1e-8);
+  CHECK(problem.vertex_positions()[5].z() < -1e-4);  // it sags
+  // Mirror symmetry about the grid's two axes.
+  const auto x = problem.vertex_positions();
+  const double diagonal = problem.length_scale();
+  int pairs = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const Eigen::Vector3d a = x[i * n + j], b = x[i * n + (n - 1 - j)], c = x[(n - 1 - i) * n + j];
+      const double centre = 0.25 * (n - 1) / 2.0;  // of the input grid, in x and y
+      CHECK(std::abs(a.x() + b.x() - 2.0 * centre) < 1e-8 * diagonal);
+      CHECK(std::abs(a.z() - b.z()) < 1e-8 * diagonal);
+      CHECK(std::abs(a.y() + c.y() - 2.0 * centre) < 1e-8 * diagonal);
+      CHECK(std::abs(a.z() - c.z()) < 1e-8 * diagonal);
+      ++pairs;
+    }
+  CHECK(pairs == n * n);
+  // Quadratic convergence: once below 1e-3, each measure is at most a
+  // modest constant times the square of the previous one.
+  int quadratic_steps = 0;
+  for (size_t k = 1; k < measures.size(); ++k)
+    if (measures[k - 1] < 1e-3 && measures[k - 1] > 1e-8) {
+      CHECK(measures[k] <= 1e3 * measures[k - 1] * measures[k - 1]);
+      ++quadratic_steps;
+    }
+  CHECK(quadratic_steps >= 1);
+}
+
+TEST_CASE("A zero-energy mechanism (flat grid of straight rods, no load) is converged at once") {
+  LinkageProblem problem(RodLinkage(square_grid(4), lath_options()), StaticsSetup{});
+  CHECK(problem.default_support_vertex() >= 0);
+  LinkageObjective objective(problem);
+  const NewtonResult result = solve_newton(objective, tight());
+  CHECK(result.converged());
+  CHECK(result.iterations == 0);
+  CHECK(problem.energy().total() == doctest::Approx(0.0));
+}
+
+}  // namespace xshell::test

@@ -1,0 +1,313 @@
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <cstdio>
+#include <vector>
+
+#include "integrators/convergence.hpp"
+#include "integrators/newton/newton.hpp"
+#include "integrators/toy_objectives.hpp"
+
+namespace xshell::test {
+
+
+namespace {
+
+struct Recorded {
+  NewtonResult result;
+  std::vector<NewtonReport> reports;
+  std::vector<double> measures() const {
+    std::vector<double> m;
+    for (const NewtonReport& r : reports) m.push_back(r.gradient_measure);
+    return m;
+  }
+};
+
+Recorded run_newton(Objective& objective, NewtonOptions options = {}) {
+  Recorded run;
+  NewtonCallbacks callbacks;
+  callbacks.on_iteration = [&](const NewtonReport& r) { run.reports.push_back(r); };
+  run.result = solve_newton(objective, options, callbacks);
+  return run;
+}
+
+NewtonOptions tight() {
+  NewtonOptions options;
+  options.gradient_tolerance = 1e-10;
+  return options;
+}
+
+std::string trace(const Recorded& run) {
+  std::string text;
+  char buffer[32];
+  for (const NewtonReport& r : run.reports) {
+    std::snprintf(buffer, sizeof buffer, " %.2e%s", r.gradient_measure, r.shifted ? "(s)" : "");
+    text += buffer;
+  }
+  return text;
+}
+
+// e_{k+1} <= C e_k^2 in the local regime (e_k < 1e-2, e_{k+1} above the toys'
+// gradient round-off 1e-12), with C = 1e3 for these O(1) toys.
+void expect_quadratic_convergence(const Recorded& run, const std::string& name) {
+  const ObservedOrders orders = observed_orders(run.measures());
+  INFO(name << ": measures" << trace(run));
+  REQUIRE(orders.pairs >= 1);
+  CHECK(orders.max_quadratic_constant < 1e3);
+  MESSAGE(name << ": " << run.result.iterations << " iterations, local pairs " << orders.pairs
+               << ", max e_{k+1}/e_k^2 " << orders.max_quadratic_constant << ", min log ratio "
+               << orders.min_log_ratio << ";" << trace(run));
+}
+
+}  // namespace
+
+// Both globalizations: the default (energy line search) and KINSOL's line
+// search with the energy fallback at indefinite Hessians.
+std::vector<NewtonOptions> both_line_searches(int max_iterations = 100) {
+  NewtonOptions energy = tight();
+  energy.max_iterations = max_iterations;
+  NewtonOptions kinsol = energy;
+  kinsol.line_search = LineSearch::KinsolWithEnergyFallback;
+  return {energy, kinsol};
+}
+
+std::string label(const NewtonOptions& options) {
+  return options.line_search == LineSearch::Energy ? "energy line search"
+                                                   : "KINSOL line search with energy fallback";
+}
+
+TEST_CASE("Newton converges quadratically on the chain") {
+  for (const NewtonOptions& options : both_line_searches()) {
+    StencilObjective chain = make_chain();
+    const Recorded run = run_newton(chain, options);
+    INFO(label(options) << ": " << run.result.reason);
+    REQUIRE(run.result.status == NewtonStatus::Converged);
+    CHECK(run.result.gradient_measure <= 1e-10);
+    CHECK(run.result.stable);
+    CHECK(run.result.iterations == static_cast<int>(run.reports.size()) - 1);
+    CHECK(run.reports.front().iteration == 0);
+    CHECK(run.result.factorizations >= run.result.iterations + 1);  // + stability check
+    expect_quadratic_convergence(run, "chain, " + label(options));
+  }
+}
+
+TEST_CASE("Newton converges on the extended Rosenbrock function") {
+  // KINSOL's merit line search crawls along the curved valleys (|g|^2 is far
+  // more curved across them than the energy): hence the iteration budget.
+  for (const NewtonOptions& options : both_line_searches(500)) {
+    StencilObjective rosenbrock = make_rosenbrock(8);
+    const Recorded run = run_newton(rosenbrock, options);
+    INFO(label(options) << ": " << run.result.reason);
+    REQUIRE(run.result.status == NewtonStatus::Converged);
+    CHECK((rosenbrock.get() - Eigen::VectorXd::Ones(8)).norm() < 1e-8);
+    CHECK(run.result.stable);
+    expect_quadratic_convergence(run, "rosenbrock, " + label(options));
+  }
+}
+
+TEST_CASE("Newton on the offset (rebasing) objective") {
+  StencilObjective plain = make_chain();
+  REQUIRE(solve_newton(plain, tight()).converged());
+  for (const NewtonOptions& options : both_line_searches()) {
+    StencilObjective inner = make_chain();
+    OffsetObjective offset(inner, 0.3);
+    const Recorded run = run_newton(offset, options);
+    INFO(label(options) << ": " << run.result.reason);
+    REQUIRE(run.result.status == NewtonStatus::Converged);
+    CHECK(run.result.stable);
+    CHECK(offset.rebases() == run.result.iterations + 1);  // one before the first iteration, one after each
+    CHECK(offset.get().norm() < 1e-6);                 // offsets are reset every iteration
+    expect_quadratic_convergence(run, "offset chain, " + label(options));
+    CHECK((offset.configuration() - plain.get()).norm() < 1e-8 * plain.get().norm());
+  }
+}
+
+TEST_CASE("Newton from a converged start does no iteration") {
+  StencilObjective chain = make_chain();
+  REQUIRE(solve_newton(chain, tight()).converged());
+  const long evaluations = chain.evaluations();
+  const Recorded run = run_newton(chain, tight());
+  CHECK(run.result.status == NewtonStatus::Converged);
+  CHECK(run.result.iterations == 0);
+  CHECK(run.reports.size() == 1);
+  CHECK(run.result.stable);
+  CHECK(run.result.factorizations == 1);  // the stability check only
+  CHECK(chain.evaluations() - evaluations <= 4);
+}
+
+TEST_CASE("a NewtonSolver keeps its symbolic analysis across solves") {
+  StencilObjective chain = make_chain();
+  NewtonSolver solver(chain, tight());
+  REQUIRE(solver.solve().converged());
+  const CholeskyStats first = solver.cholesky_stats();
+  Eigen::VectorXd q = chain.get();
+  q[4] += 0.01;  // a new load step, say
+  chain.set(q);
+  const NewtonResult again = solver.solve();
+  REQUIRE(again.converged());
+  CHECK(again.iterations >= 1);
+  CHECK(solver.cholesky_stats().analyses == 1);
+  CHECK(solver.cholesky_stats().factorizations == first.factorizations + again.factorizations);
+}
+
+TEST_CASE("Newton on the Euler column: saddle versus buckled minimum") {
+  ColumnOptions straight;
+  SUBCASE("started on the symmetric (straight) line, it converges to the saddle") {
+    StencilObjective column = make_column(straight);
+    const Recorded run = run_newton(column, tight());
+    INFO(run.result.reason);
+    REQUIRE(run.result.status == NewtonStatus::Converged);
+    CHECK(std::abs(column.get()[column_middle_y(straight)]) < 1e-12);
+    CHECK_FALSE(run.result.stable);  // never call a saddle stable
+    MESSAGE("straight column: " << run.result.iterations << " iterations");
+
+    // Restarted exactly at the saddle: converged at once, still unstable.
+    const Recorded again = run_newton(column, tight());
+    CHECK(again.result.status == NewtonStatus::Converged);
+    CHECK(again.result.iterations == 0);
+    CHECK_FALSE(again.result.stable);
+  }
+  SUBCASE("with an imperfection, it reaches the buckled minimum") {
+    ColumnOptions imperfect = straight;
+    imperfect.imperfection = 0.05;
+    std::vector<Eigen::VectorXd> minima;
+    for (const NewtonOptions& options : both_line_searches()) {
+      StencilObjective column = make_column(imperfect);
+      const Recorded run = run_newton(column, options);
+      INFO(label(options) << ": " << run.result.reason);
+      REQUIRE(run.result.status == NewtonStatus::Converged);
+      CHECK(run.result.stable);
+      CHECK(column.get()[column_middle_y(imperfect)] > 0.05);  // buckled, same side
+      bool any_shift = false;
+      for (const NewtonReport& r : run.reports) {
+        any_shift = any_shift || r.shifted;
+        if (options.line_search == LineSearch::Energy)
+          CHECK(r.energy_line_search == (r.iteration > 0));
+      }
+      CHECK(any_shift);  // the start is close enough to the saddle to need a shift
+      expect_quadratic_convergence(run, "buckled column, " + label(options));
+      minima.push_back(column.get());
+    }
+    CHECK((minima[0] - minima[1]).norm() < 1e-8);
+  }
+}
+
+TEST_CASE("KINSOL's merit line search alone stalls on an indefinite start") {
+  // The chain starts compressed: its Hessian is indefinite and the shifted
+  // step is an energy descent direction but not one of |g|^2.
+  StencilObjective chain = make_chain();
+  NewtonOptions kinsol_only = tight();
+  kinsol_only.line_search = LineSearch::Kinsol;
+  const Recorded run = run_newton(chain, kinsol_only);
+  MESSAGE("LineSearch::Kinsol on the chain: " << std::string(to_string(run.result.status)) << " ("
+                                              << run.result.reason << ") after "
+                                              << run.result.iterations << " iterations");
+  CHECK(run.result.status == NewtonStatus::LineSearchFailed);
+  REQUIRE(run.reports.size() >= 1);
+  CHECK(std::isfinite(chain.energy()));  // left at the last accepted iterate
+
+  StencilObjective fresh = make_chain();
+  NewtonOptions with_fallback = tight();
+  with_fallback.line_search = LineSearch::KinsolWithEnergyFallback;
+  const Recorded fallback = run_newton(fresh, with_fallback);
+  CHECK(fallback.result.status == NewtonStatus::Converged);
+  bool used_fallback = false;
+  for (const NewtonReport& r : fallback.reports)
+    used_fallback = used_fallback || r.energy_line_search;
+  CHECK(used_fallback);
+}
+
+TEST_CASE("Newton stops when the stop flag is raised") {
+  StencilObjective rosenbrock = make_rosenbrock(8);
+  std::atomic<bool> stop{false};
+  NewtonCallbacks callbacks;
+  int reports = 0;
+  callbacks.on_iteration = [&](const NewtonReport& r) {
+    ++reports;
+    if (r.iteration == 2) stop = true;
+  };
+  callbacks.stop = &stop;
+  const NewtonResult result = solve_newton(rosenbrock, tight(), callbacks);
+  CHECK(result.status == NewtonStatus::Interrupted);
+  CHECK(result.iterations == 2);
+  CHECK(reports == 3);
+  CHECK(std::isfinite(rosenbrock.energy()));
+}
+
+TEST_CASE("Newton handles invalid configurations and non-finite values") {
+  const Eigen::VectorXd start = Eigen::VectorXd::Constant(3, 4.0);
+  // The full Newton step from x = 4 lands at x = -4 (invalid), half of it at 0.
+  for (const NewtonOptions& options : both_line_searches()) {
+    INFO(label(options));
+    SUBCASE("domain_error at a trial point: backtracks and converges") {
+      SqrtWell well(start, InvalidBehaviour::Throw);
+      const NewtonResult result = solve_newton(well, options);
+      INFO(result.reason);
+      CHECK(result.status == NewtonStatus::Converged);
+      CHECK(well.invalid_encounters() >= 2);
+      CHECK((well.get() - Eigen::VectorXd::Ones(3)).norm() < 1e-8);
+    }
+    SUBCASE("NaN at a trial point: backtracks and converges") {
+      SqrtWell well(start, InvalidBehaviour::NaN);
+      const NewtonResult result = solve_newton(well, options);
+      INFO(result.reason);
+      CHECK(result.status == NewtonStatus::Converged);
+      CHECK(well.invalid_encounters() >= 2);
+    }
+    SUBCASE("a NaN region between the start and the minimum stops the solve") {
+      SqrtWell well(start, InvalidBehaviour::NaN, 3.9);  // the minimum x = 1 is unreachable
+      const NewtonResult result = solve_newton(well, options);
+      INFO(result.reason);
+      CHECK(well.invalid_encounters() >= 5);
+      CHECK(std::isfinite(well.energy()));  // left at the last accepted iterate
+      CHECK((well.get().array() >= 3.9).all());
+      if (options.line_search == LineSearch::Energy) {
+        // Backtracks into the valid sliver [3.9, 4], then stagnates at its edge.
+        CHECK(result.status == NewtonStatus::LineSearchFailed);
+        CHECK(result.iterations >= 1);
+      } else {
+        // KINSOL halves a failing step at most 5 times: every trial is NaN.
+        CHECK(result.status == NewtonStatus::NonFinite);
+        CHECK(result.iterations == 0);
+        CHECK(well.get() == start);
+      }
+    }
+    SUBCASE("invalid configurations around the start: LineSearchFailed") {
+      SqrtWell well(start, InvalidBehaviour::Throw, 3.9);
+      const NewtonResult result = solve_newton(well, options);
+      INFO(result.reason);
+      CHECK(result.status == NewtonStatus::LineSearchFailed);
+      CHECK((well.get().array() >= 3.9).all());
+    }
+    SUBCASE("NaN at the start: NonFinite without any iteration") {
+      SqrtWell well(Eigen::VectorXd::Constant(3, -1.0), InvalidBehaviour::NaN);
+      const NewtonResult result = solve_newton(well, options);
+      CHECK(result.status == NewtonStatus::NonFinite);
+      CHECK(result.iterations == 0);
+      CHECK_FALSE(result.stable);
+    }
+  }
+}
+
+TEST_CASE("Newton stops at the round-off floor instead of iterating forever") {
+  StencilObjective chain = make_chain();
+  NewtonOptions options = tight();
+  options.gradient_tolerance = 1e-300;  // below any achievable gradient
+  const NewtonResult result = solve_newton(chain, options);
+  INFO(result.reason);
+  CHECK(result.status == NewtonStatus::LineSearchFailed);
+  CHECK(result.iterations < 30);
+  CHECK(result.gradient_measure < 1e-12);
+  CHECK(result.stable);
+}
+
+TEST_CASE("an unexpected exception inside a KINSOL callback reaches the caller") {
+  StencilObjective chain = make_chain();
+  FaultyObjective faulty(chain, 3);  // throws inside KINSOL's line search (residual calls)
+  NewtonOptions options = tight();
+  options.line_search = LineSearch::Kinsol;  // every trial point comes from KINSOL
+  CHECK_THROWS_AS(solve_newton(faulty, options), std::runtime_error);
+  CHECK(faulty.calls() >= 3);
+}
+
+}  // namespace xshell::test

@@ -1,0 +1,102 @@
+#include <doctest/doctest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "integrators/beam_fixtures.hpp"
+#include "integrators/stability/stability_analysis.hpp"
+
+namespace xshell::test {
+
+
+namespace {
+
+// Lateral deflection of the column's nodes in a mode, normalized to 1 at
+// the tip, against the clamped-free buckling shape 1 - cos(pi s / 2L). The
+// square section buckles in any plane through the axis (a double
+// eigenvalue): the deflection is read along the tip's own direction.
+double shape_error(const LinkageProblem& problem, const Eigen::VectorXd& mode, int& compared) {
+  const auto d = node_displacements(problem, mode)[0];
+  const auto& nodes = problem.linkage().segment(0).nodes();
+  const Eigen::Vector3d tip(0.0, d.back().y(), d.back().z());
+  REQUIRE(tip.norm() > 0.0);
+  const Eigen::Vector3d u = tip / tip.norm();
+  double error = 0.0;
+  for (size_t k = 0; k < d.size(); ++k) {
+    const double s = nodes[k].x() - nodes[0].x();
+    error = std::max(error, std::abs(d[k].dot(u) / tip.norm() - (1.0 - std::cos(0.5 * M_PI * s))));
+    const Eigen::Vector3d lateral(0.0, d[k].y(), d[k].z());
+    CHECK(lateral.cross(u).norm() <= 1e-6 * tip.norm());  // in one plane through the axis
+    ++compared;
+  }
+  return error;
+}
+
+}  // namespace
+
+TEST_CASE("Lowest eigenpairs by shift-invert Lanczos match a dense solve, also when indefinite") {
+  int checked = 0;
+  for (double factor : {0.5, 1.3}) {  // below and above the critical load: PD, then indefinite
+    CAPTURE(factor);
+    const double p_cr = M_PI * M_PI / 4.0;
+    LinkageProblem problem = cantilever_beam(60, Eigen::Vector3d(-factor * p_cr, 0, 0));
+    REQUIRE(relax(problem).converged());
+    const Eigen::SparseMatrix<double> H = problem.free_hessian();
+    const Eigen::VectorXd m = problem.free_mass();
+    EigenModesOptions options;
+    options.count = 4;
+    const EigenModes modes = lowest_eigenmodes(H, m, options);
+    REQUIRE(modes.converged);
+    REQUIRE(H.rows() > 4 * options.count + 20);  // the Lanczos path, not the dense fallback
+    const Eigen::VectorXd r = m.cwiseSqrt().cwiseInverse();
+    const Eigen::MatrixXd A = r.asDiagonal() * Eigen::MatrixXd(H) * r.asDiagonal();
+    const Eigen::VectorXd exact = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A).eigenvalues();
+    const double scale = exact.cwiseAbs().maxCoeff();
+    for (int k = 0; k < options.count; ++k) {
+      CAPTURE(exact[k]);
+      CHECK(std::abs(modes.values[k] - exact[k]) <= 1e-7 * std::abs(exact[k]) + 1e-14 * scale);
+      const Eigen::VectorXd phi = modes.vectors.col(k);
+      CHECK((H * phi - modes.values[k] * m.cwiseProduct(phi)).norm() <= 1e-6 * scale * phi.norm());
+      CHECK(phi.dot(m.cwiseProduct(phi)) == doctest::Approx(1.0));
+      ++checked;
+    }
+    CHECK((modes.values[0] < 0.0) == (factor > 1.0));
+  }
+  CHECK(checked == 8);
+}
+
+TEST_CASE("Euler column: the linearized buckling load factor predicts P_cr, the mode is the Euler shape") {
+  // Clamped-free column, E I = 1, L = 1: P_cr = pi^2 / 4, mode 1 - cos(pi s / 2).
+  const double p_cr = M_PI * M_PI / 4.0;
+  int compared = 0;
+  for (double factor : {0.3, 0.8}) {
+    CAPTURE(factor);
+    LinkageProblem problem = cantilever_beam(200, Eigen::Vector3d(-factor * p_cr, 0, 0));
+    REQUIRE(relax(problem, 1e-8).converged());
+    const StabilityAnalysis a = analyse_stability(problem);
+    REQUIRE(a.unloaded_converged);
+    REQUIRE(a.buckling.status == BucklingStatus::Found);
+    const double predicted = a.buckling.load_factor * factor * p_cr;
+    MESSAGE("predicted P_cr / exact = " << predicted / p_cr);
+    CHECK(std::abs(predicted / p_cr - 1.0) < 0.01);
+    CHECK(shape_error(problem, a.buckling.mode, compared) < 0.01);
+    // The loaded structure is still stable, its lowest eigenvalue positive.
+    REQUIRE(a.modes.converged);
+    CHECK(a.modes.values[0] > 0.0);
+    CHECK(shape_error(problem, a.modes.vectors.col(0), compared) < 0.05);
+  }
+  CHECK(compared == 4 * 201);
+}
+
+TEST_CASE("A tension load never buckles, without loads there is no buckling analysis") {
+  LinkageProblem pulled = cantilever_beam(30, Eigen::Vector3d(2.0, 0, 0));
+  REQUIRE(relax(pulled).converged());
+  CHECK(analyse_stability(pulled).buckling.status == BucklingStatus::NoBuckling);
+  LinkageProblem free = cantilever_beam(30, Eigen::Vector3d::Zero());
+  const StabilityAnalysis a = analyse_stability(free);
+  CHECK(!a.loaded);
+  CHECK(a.modes.converged);
+  CHECK(a.modes.values.size() == 6);
+}
+
+}  // namespace xshell::test

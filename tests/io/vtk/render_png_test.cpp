@@ -1,0 +1,159 @@
+// Headless PNG rendering. The picture itself needs an X display: CI runs the
+// suite under `xvfb-run -a`; without a display that case only prints a
+// MESSAGE. The error paths (no display, unreachable display, bad input) are
+// checked everywhere.
+#include <doctest/doctest.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
+#include <vtkPointData.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <cstdlib>
+#include <optional>
+#include <set>
+
+#include "demo_snapshot.hpp"
+#include "io/vtk/render_error.hpp"
+#include "io/vtk/render_png.hpp"
+#include "io/vtk/rods_file.hpp"
+#include "io/vtk/solids_file.hpp"
+#include "io/vtk/x_display.hpp"
+#include "vtk_test_support.hpp"
+#include "skip.hpp"
+
+namespace xshell::test {
+namespace {
+
+// Sets (or, with nullopt, unsets) DISPLAY for its lifetime.
+class DisplayVariable {
+ public:
+  explicit DisplayVariable(const std::optional<std::string>& value) {
+    if (const char* old = std::getenv("DISPLAY")) saved_ = old;
+    if (value)
+      ::setenv("DISPLAY", value->c_str(), 1);
+    else
+      ::unsetenv("DISPLAY");
+  }
+  DisplayVariable(const DisplayVariable&) = delete;
+  DisplayVariable& operator=(const DisplayVariable&) = delete;
+  ~DisplayVariable() {
+    if (saved_)
+      ::setenv("DISPLAY", saved_->c_str(), 1);
+    else
+      ::unsetenv("DISPLAY");
+  }
+
+ private:
+  std::optional<std::string> saved_;
+};
+
+struct Picture {
+  int width = 0, height = 0;
+  std::set<unsigned> colours;  // packed RGB
+  bool white_corner = false;
+};
+
+Picture read_png(const std::filesystem::path& path) {
+  REQUIRE(std::filesystem::is_regular_file(path));
+  vtkNew<vtkPNGReader> reader;
+  REQUIRE(reader->CanReadFile(path.string().c_str()));
+  reader->SetFileName(path.string().c_str());
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  Picture picture;
+  picture.width = dims[0];
+  picture.height = dims[1];
+  vtkDataArray* pixels = image->GetPointData()->GetScalars();
+  REQUIRE(pixels);
+  REQUIRE(pixels->GetNumberOfComponents() >= 3);
+  for (vtkIdType i = 0; i < pixels->GetNumberOfTuples(); ++i) {
+    const double* p = pixels->GetTuple(i);
+    picture.colours.insert((static_cast<unsigned>(p[0]) << 16) |
+                           (static_cast<unsigned>(p[1]) << 8) | static_cast<unsigned>(p[2]));
+  }
+  const double* corner = pixels->GetTuple(0);
+  picture.white_corner = corner[0] == 255 && corner[1] == 255 && corner[2] == 255;
+  return picture;
+}
+
+// The demo snapshot's rods and solids files in `dir`.
+std::pair<std::string, std::string> demo_files(const ScratchDir& dir) {
+  const Snapshot snapshot = demo_snapshot(0.0, 0.4);
+  const auto rods = dir.path() / "rods.vtp", solids = dir.path() / "solids.vtp";
+  write_rods_file(snapshot, rods);
+  write_solids_file(snapshot, solids);
+  return {rods.string(), solids.string()};
+}
+
+}  // namespace
+
+TEST_CASE("render: no display, or an unreachable one, is a RenderError, not a crash") {
+  ScratchDir dir("render_nodisplay");
+  const auto [rods, solids] = demo_files(dir);
+  const auto png = dir.path() / "picture.png";
+  int checks = 0;
+  for (const std::optional<std::string>& value :
+       {std::optional<std::string>{}, std::optional<std::string>{""},
+        std::optional<std::string>{":31999"}}) {
+    CAPTURE(value.value_or("(unset)"));
+    DisplayVariable display(value);
+    bool thrown = false;
+    try {
+      render_png({rods}, png.string());
+    } catch (const RenderError& e) {
+      thrown = true;
+      XSHELL_COUNTED_CHECK(checks, std::string(e.what()).find("xvfb-run") != std::string::npos);
+    }
+    XSHELL_COUNTED_CHECK(checks, thrown);
+    XSHELL_COUNTED_CHECK(checks, !std::filesystem::exists(png));
+  }
+  CHECK(checks == 3 * 3);
+}
+
+TEST_CASE("render: solids and tubes to a non-trivial PNG (needs a display)") {
+  if (!display_variable_set())
+    XSHELL_SKIP("DISPLAY is not set: no picture (run under `xvfb-run -a` to check it)");
+  ScratchDir dir("render");
+  const auto [rods, solids] = demo_files(dir);
+  int checks = 0;
+
+  // Solids present: they are drawn, coloured by bending density.
+  const auto solid_png = dir.path() / "solids.png";
+  render_png({rods, solids}, solid_png.string(), {320, 240, "bending_density", 0.0});
+  const Picture solid = read_png(solid_png);
+  XSHELL_COUNTED_CHECK(checks, solid.width == 320);
+  XSHELL_COUNTED_CHECK(checks, solid.height == 240);
+  XSHELL_COUNTED_CHECK(checks, solid.white_corner);         // white background
+  XSHELL_COUNTED_CHECK(checks, solid.colours.size() > 10);  // shaded, coloured geometry
+
+  // Rods only: drawn as tubes, coloured by a cell array, other size.
+  const auto tube_png = dir.path() / "tubes.png";
+  render_png({rods}, tube_png.string(), {200, 150, "rod_id", 0.0});
+  const Picture tube = read_png(tube_png);
+  XSHELL_COUNTED_CHECK(checks, tube.width == 200);
+  XSHELL_COUNTED_CHECK(checks, tube.height == 150);
+  XSHELL_COUNTED_CHECK(checks, tube.white_corner);
+  XSHELL_COUNTED_CHECK(checks, tube.colours.size() > 1);
+
+  // One colour for everything when no array is asked for.
+  const auto plain_png = dir.path() / "plain.png";
+  render_png({solids}, plain_png.string(), {64, 48, "", 0.0});
+  XSHELL_COUNTED_CHECK(checks, read_png(plain_png).colours.size() > 1);
+  CHECK(checks == 9);
+}
+
+TEST_CASE("render: bad input is a RenderError (needs a display)") {
+  if (!display_variable_set()) XSHELL_SKIP("DISPLAY is not set: no input checks of render_png");
+  ScratchDir dir("render_bad");
+  const auto [rods, solids] = demo_files(dir);
+  const std::string png = (dir.path() / "p.png").string();
+  CHECK_THROWS_AS(render_png({(dir.path() / "missing.vtp").string()}, png), RenderError);
+  CHECK_THROWS_AS(render_png({rods}, png, {64, 48, "no_such_array", 0.0}), RenderError);
+  CHECK_THROWS_AS(render_png({rods}, png, {0, 48, "", 0.0}), std::invalid_argument);
+  CHECK_FALSE(std::filesystem::exists(png));
+}
+
+}  // namespace xshell::test
