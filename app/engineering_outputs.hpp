@@ -17,7 +17,8 @@ namespace xshell {
 
 // problem: at its final (converged) state. origin: added to positions.
 // Throws OutputError when a file cannot be written.
-void write_engineering_results(LinkageProblem& problem, const Config& config, const Eigen::Vector3d& origin,
+void write_engineering_results(LinkageProblem& problem, const Config& config,
+                               const Eigen::Vector3d& origin,
                                const std::filesystem::path& directory, RunSummary& summary);
 
 }  // namespace xshell

@@ -23,15 +23,19 @@ int main(int argc, char** argv) {
   RelaxArguments relax;
   CLI::App* relax_cmd = app.add_subcommand("relax", "Find the static equilibrium of a linkage");
   relax_cmd->add_option("config", relax.config, "Configuration (JSON)")->required();
-  relax_cmd->add_option("--solver", relax.solver, "newton | dynamics | kinetic-damping (overrides solver.method)");
+  relax_cmd->add_option("--solver", relax.solver,
+                        "newton | dynamics | kinetic-damping (overrides solver.method)");
   relax_cmd->add_option("--out", relax.out, "Output directory (overrides output.directory)");
   relax_cmd->add_option("--init", relax.init, "Start from a state.json written by an earlier run");
   relax_cmd->add_flag("--quiet", relax.quiet, "No progress lines");
-  relax_cmd->add_flag("--verbose", relax.verbose, "Progress lines even when stderr is not a terminal");
+  relax_cmd->add_flag("--verbose", relax.verbose,
+                      "Progress lines even when stderr is not a terminal");
 
   RenderArguments render;
-  CLI::App* render_cmd = app.add_subcommand("render", "Render a run's final state (or .vtp files) to a PNG");
-  render_cmd->add_option("inputs", render.inputs, "An output directory of `relax`, or .vtp files")->required();
+  CLI::App* render_cmd =
+      app.add_subcommand("render", "Render a run's final state (or .vtp files) to a PNG");
+  render_cmd->add_option("inputs", render.inputs, "An output directory of `relax`, or .vtp files")
+      ->required();
   render_cmd->add_option("--out", render.png, "PNG file to write")->required();
   render_cmd->add_option("--width", render.width, "Picture width in pixels");
   render_cmd->add_option("--height", render.height, "Picture height in pixels");
@@ -58,7 +62,8 @@ int main(int argc, char** argv) {
     }
     return run_render(render);
   } catch (const std::bad_alloc&) {
-    std::cerr << "xshell: error: out of memory (a linkage or subdivisions too large for this machine?)\n";
+    std::cerr
+        << "xshell: error: out of memory (a linkage or subdivisions too large for this machine?)\n";
   } catch (const std::exception& e) {
     std::cerr << "xshell: error: internal error: " << e.what() << "\n";
   }

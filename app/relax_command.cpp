@@ -11,9 +11,9 @@
 #include "deploy_run.hpp"
 #include "engineering_outputs.hpp"
 #include "exit_status.hpp"
+#include "integrators/common/linkage_objective.hpp"
 #include "integrators/dynamics/ida_dynamics.hpp"
 #include "integrators/kinetic_damping/kinetic_damping.hpp"
-#include "integrators/common/linkage_objective.hpp"
 #include "integrators/newton/newton.hpp"
 #include "io/config.hpp"
 #include "io/input_error.hpp"
@@ -37,56 +37,79 @@ SolverMethod parse_method(const std::string& name) {
   if (name == "newton") return SolverMethod::Newton;
   if (name == "dynamics") return SolverMethod::Dynamics;
   if (name == "kinetic-damping") return SolverMethod::KineticDamping;
-  throw InputError("--solver: unknown solver \"" + name + "\" (choose newton, dynamics or kinetic-damping)");
+  throw InputError("--solver: unknown solver \"" + name +
+                   "\" (choose newton, dynamics or kinetic-damping)");
 }
 
 // Combinations the configuration can name but this version does not run:
 // refuse them clearly rather than ignore them.
 void check_available(const Config& config) {
   if (config.solver.method == SolverMethod::KineticDamping && config.deployment)
-    throw InputError(config.source + ": deployment: not available with solver.method \"kinetic-damping\"; use \"newton\" or \"dynamics\"");
+    throw InputError(config.source +
+                     ": deployment: not available with solver.method \"kinetic-damping\"; use "
+                     "\"newton\" or \"dynamics\"");
 }
 
 const char* method_name(SolverMethod m) {
   switch (m) {
-    case SolverMethod::Newton: return "newton";
-    case SolverMethod::Dynamics: return "dynamics";
-    case SolverMethod::KineticDamping: return "kinetic-damping";
+    case SolverMethod::Newton:
+      return "newton";
+    case SolverMethod::Dynamics:
+      return "dynamics";
+    case SolverMethod::KineticDamping:
+      return "kinetic-damping";
   }
   return "unknown";
 }
 
 std::string status_name(NewtonStatus s) {
   switch (s) {
-    case NewtonStatus::Converged: return "converged";
-    case NewtonStatus::MaxIterations: return "max_iterations";
-    case NewtonStatus::LinearSolverFailed: return "linear_solver_failed";
-    case NewtonStatus::LineSearchFailed: return "line_search_failed";
-    case NewtonStatus::NonFinite: return "non_finite";
-    case NewtonStatus::Interrupted: return "interrupted";
+    case NewtonStatus::Converged:
+      return "converged";
+    case NewtonStatus::MaxIterations:
+      return "max_iterations";
+    case NewtonStatus::LinearSolverFailed:
+      return "linear_solver_failed";
+    case NewtonStatus::LineSearchFailed:
+      return "line_search_failed";
+    case NewtonStatus::NonFinite:
+      return "non_finite";
+    case NewtonStatus::Interrupted:
+      return "interrupted";
   }
   return "unknown";
 }
 
 std::string status_name(DynamicsStatus s) {
   switch (s) {
-    case DynamicsStatus::Converged: return "converged";
-    case DynamicsStatus::MaxSteps: return "max_iterations";
-    case DynamicsStatus::LinearSolverFailed: return "linear_solver_failed";
-    case DynamicsStatus::IntegratorFailed: return "integrator_failed";
-    case DynamicsStatus::NonFinite: return "non_finite";
-    case DynamicsStatus::Interrupted: return "interrupted";
+    case DynamicsStatus::Converged:
+      return "converged";
+    case DynamicsStatus::MaxSteps:
+      return "max_iterations";
+    case DynamicsStatus::LinearSolverFailed:
+      return "linear_solver_failed";
+    case DynamicsStatus::IntegratorFailed:
+      return "integrator_failed";
+    case DynamicsStatus::NonFinite:
+      return "non_finite";
+    case DynamicsStatus::Interrupted:
+      return "interrupted";
   }
   return "unknown";
 }
 
 std::string status_name(KineticDampingStatus s) {
   switch (s) {
-    case KineticDampingStatus::Converged: return "converged";
-    case KineticDampingStatus::MaxIterations: return "max_iterations";
-    case KineticDampingStatus::InvalidConfiguration: return "invalid_configuration";
-    case KineticDampingStatus::NonFinite: return "non_finite";
-    case KineticDampingStatus::Interrupted: return "interrupted";
+    case KineticDampingStatus::Converged:
+      return "converged";
+    case KineticDampingStatus::MaxIterations:
+      return "max_iterations";
+    case KineticDampingStatus::InvalidConfiguration:
+      return "invalid_configuration";
+    case KineticDampingStatus::NonFinite:
+      return "non_finite";
+    case KineticDampingStatus::Interrupted:
+      return "interrupted";
   }
   return "unknown";
 }
@@ -95,13 +118,16 @@ std::string status_name(KineticDampingStatus s) {
 // solver callbacks never throw.
 class Outputs {
  public:
-  Outputs(const fs::path& dir, const Config& config, const LinkageProblem& problem, const Eigen::Vector3d& origin)
+  Outputs(const fs::path& dir, const Config& config, const LinkageProblem& problem,
+          const Eigen::Vector3d& origin)
       : dir_(dir), problem_(problem), origin_(origin) {
     SeriesOptions options;
     options.every = config.output.every;
-    options.format = config.output.format == OutputFormat::Ascii ? VtkFormat::Ascii : VtkFormat::Binary;
+    options.format =
+        config.output.format == OutputFormat::Ascii ? VtkFormat::Ascii : VtkFormat::Binary;
     const long edges = static_cast<long>(problem.linkage().num_segments()) * config.subdivisions;
-    options.solids = config.output.solids == Toggle::On || (config.output.solids == Toggle::Auto && edges <= 20000);
+    options.solids = config.output.solids == Toggle::On ||
+                     (config.output.solids == Toggle::Auto && edges <= 20000);
     series_.emplace(dir, options);
   }
 
@@ -110,7 +136,8 @@ class Outputs {
     if (failed() || (!force && time == last_time_)) return;
     if (force && time == last_time_) return;  // already written
     try {
-      if (series_->write(linkage_snapshot(problem_.linkage(), origin_, time), force)) last_time_ = time;
+      if (series_->write(linkage_snapshot(problem_.linkage(), origin_, time), force))
+        last_time_ = time;
     } catch (const std::exception& e) {
       error_ = e.what();
     }
@@ -169,7 +196,8 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
     std::cerr << "xshell: error: " << e.what() << "\n";
     return kExitInvalidInput;
   } catch (const ModelError& e) {
-    std::cerr << "xshell: error: " << (config.linkage.empty() ? args.config : config.linkage) << ": " << e.what() << "\n";
+    std::cerr << "xshell: error: " << (config.linkage.empty() ? args.config : config.linkage)
+              << ": " << e.what() << "\n";
     return kExitInvalidInput;
   }
 
@@ -187,8 +215,9 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
   // Rigid motions that no support holds make Newton's system singular
   // unless the loads hold them: said now, and in the reason of a failure.
   const std::vector<RigidMotion> rigid_motions =
-      setup.statics.supports.empty() ? std::vector<RigidMotion>()
-                                     : free_rigid_motions(setup.statics.supports, problem->vertex_positions());
+      setup.statics.supports.empty()
+          ? std::vector<RigidMotion>()
+          : free_rigid_motions(setup.statics.supports, problem->vertex_positions());
   const std::string free_motions = describe(rigid_motions, setup.origin);
   // Dead loads never hold a translation: the Hessian is then singular, and
   // no equilibrium is stable, whatever a factorization said at round-off.
@@ -214,7 +243,8 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
   auto poll = [&] {
     if (stop.load() || outputs->failed()) halt = true;
   };
-  if (!config.deployment) outputs->step(0.0, true);  // a deployment writes its step 0 in equilibrium
+  if (!config.deployment)
+    outputs->step(0.0, true);  // a deployment writes its step 0 in equilibrium
 
   LinkageObjective objective(*problem);
   bool interrupted = false;
@@ -240,11 +270,14 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
     NewtonCallbacks callbacks;
     callbacks.stop = &halt;
     callbacks.on_iteration = [&](const NewtonReport& r) {
-      summary.history.push_back({r.iteration, double(r.iteration), r.energy, r.gradient_measure, r.step_norm, 0.0, r.seconds});
+      summary.history.push_back({r.iteration, double(r.iteration), r.energy, r.gradient_measure,
+                                 r.step_norm, 0.0, r.seconds});
       if (progress)
-        std::fprintf(stderr, "newton %4d  energy %.10e  gradient %.3e  step %.3e  factorizations %ld%s  %.3f s\n",
-                     r.iteration, r.energy, r.gradient_measure, r.step_norm, r.factorizations,
-                     r.shifted ? " (shifted)" : "", r.seconds);
+        std::fprintf(
+            stderr,
+            "newton %4d  energy %.10e  gradient %.3e  step %.3e  factorizations %ld%s  %.3f s\n",
+            r.iteration, r.energy, r.gradient_measure, r.step_norm, r.factorizations,
+            r.shifted ? " (shifted)" : "", r.seconds);
       if (r.iteration > 0) outputs->step(r.iteration, false);
       poll();
     };
@@ -271,13 +304,15 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
       seconds += r.seconds;
       // The history keeps the resets and every 100th iteration.
       if (r.reset || r.iteration % 100 == 0)
-        summary.history.push_back({r.iteration, double(r.iteration), r.energy, r.gradient_measure, r.step_norm,
-                                   r.kinetic_energy, r.seconds});
+        summary.history.push_back({r.iteration, double(r.iteration), r.energy, r.gradient_measure,
+                                   r.step_norm, r.kinetic_energy, r.seconds});
       // Thousands of iterations: a progress line every 100, and at resets of
       // the first 100.
       if (progress && (r.iteration % 100 == 0 || (r.reset && r.iteration < 100)))
-        std::fprintf(stderr, "kinetic-damping %7ld  energy %.10e  kinetic %.3e  gradient %.3e  resets %ld  %.3f s\n",
-                     r.iteration, r.energy, r.kinetic_energy, r.gradient_measure, resets, seconds);
+        std::fprintf(
+            stderr,
+            "kinetic-damping %7ld  energy %.10e  kinetic %.3e  gradient %.3e  resets %ld  %.3f s\n",
+            r.iteration, r.energy, r.kinetic_energy, r.gradient_measure, resets, seconds);
       // VTK steps at the resets (the kinetic-energy peaks), not at every
       // leapfrog iteration.
       if (r.reset) outputs->step(r.iteration, false);
@@ -296,18 +331,22 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
   } else {
     DynamicsOptions options;
     options.form = config.solver.first_order ? DynamicsForm::FirstOrder : DynamicsForm::SecondOrder;
-    options.mass = config.solver.mass == MassSetting::Fictitious ? MassModel::Fictitious : MassModel::Physical;
-    options.start = config.solver.start == StartSetting::Rest ? DynamicsStart::Rest : DynamicsStart::SlowManifold;
+    options.mass =
+        config.solver.mass == MassSetting::Fictitious ? MassModel::Fictitious : MassModel::Physical;
+    options.start = config.solver.start == StartSetting::Rest ? DynamicsStart::Rest
+                                                              : DynamicsStart::SlowManifold;
     options.damping = config.solver.damping.value_or(0.0);
     options.gradient_tolerance = config.solver.gradient_tolerance;
     options.max_steps = config.solver.step_limit();
     DynamicsCallbacks callbacks;
     callbacks.stop = &halt;
     callbacks.on_step = [&](const DynamicsReport& r) {
-      summary.history.push_back({r.step, r.time, r.energy, r.gradient_measure, r.step_size, r.kinetic_energy, 0.0});
+      summary.history.push_back(
+          {r.step, r.time, r.energy, r.gradient_measure, r.step_size, r.kinetic_energy, 0.0});
       if (progress)
-        std::fprintf(stderr, "dynamics %6ld  t %.4e  dt %.3e  energy %.10e  kinetic %.3e  gradient %.3e\n", r.step,
-                     r.time, r.step_size, r.energy, r.kinetic_energy, r.gradient_measure);
+        std::fprintf(stderr,
+                     "dynamics %6ld  t %.4e  dt %.3e  energy %.10e  kinetic %.3e  gradient %.3e\n",
+                     r.step, r.time, r.step_size, r.energy, r.kinetic_energy, r.gradient_measure);
       if (r.step > 0) outputs->step(r.time, false);
       poll();
     };
@@ -328,8 +367,8 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
     summary.status = "interrupted";
     summary.reason = "interrupted by a signal";
   } else if (!summary.converged && !free_motions.empty()) {
-    summary.reason = "singular system: the supports leave rigid motions free (" + free_motions + "); " +
-                     summary.reason;
+    summary.reason = "singular system: the supports leave rigid motions free (" + free_motions +
+                     "); " + summary.reason;
   }
   if (free_translation) summary.stable = false;
   for (char& c : summary.reason)  // one line, whatever a library said
@@ -349,7 +388,8 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
       std::cerr << "xshell: warning: no engineering results: " << e.what() << "\n";
     }
   }
-  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const bool failed_before_finish = outputs->failed();
   outputs->finish(summary);
   if (outputs->failed()) {
@@ -362,11 +402,15 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
   }
   (void)failed_before_finish;
 
-  std::fprintf(stderr, "xshell: %s after %ld %s: %s; energy %.10e, gradient %.3e (tolerance %.1e), %s; outputs in %s\n",
+  std::fprintf(stderr,
+               "xshell: %s after %ld %s: %s; energy %.10e, gradient %.3e (tolerance %.1e), %s; "
+               "outputs in %s\n",
                summary.status.c_str(), summary.iterations,
-               config.solver.method == SolverMethod::Dynamics ? "steps" : "iterations", summary.reason.c_str(),
-               summary.energy.total(), summary.gradient_norm, summary.gradient_tolerance,
-               summary.stable ? "stable" : "NOT stable (a saddle or a mechanism)", dir.string().c_str());
+               config.solver.method == SolverMethod::Dynamics ? "steps" : "iterations",
+               summary.reason.c_str(), summary.energy.total(), summary.gradient_norm,
+               summary.gradient_tolerance,
+               summary.stable ? "stable" : "NOT stable (a saddle or a mechanism)",
+               dir.string().c_str());
   if (interrupted) return kExitInterrupted;
   return summary.converged ? kExitConverged : kExitNotConverged;
 }

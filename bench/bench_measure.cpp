@@ -54,7 +54,8 @@ double peak_rss_mb() {
 std::string loaded_blas() {
   void* symbol = dlsym(RTLD_DEFAULT, "dsyrk_");
   Dl_info info{};
-  if (symbol == nullptr || dladdr(symbol, &info) == 0 || info.dli_fname == nullptr) return "unknown";
+  if (symbol == nullptr || dladdr(symbol, &info) == 0 || info.dli_fname == nullptr)
+    return "unknown";
   return info.dli_fname;
 }
 

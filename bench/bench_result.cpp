@@ -7,31 +7,40 @@
 namespace xshell::bench {
 
 const char* kColumns =
-    "case,kind,subdivisions,gravity,threads,unknowns,free_unknowns,hessian_nonzeros,energy_gradient_ms,"
-    "hessian_ms,factorization_ms,iteration_ms,factorizations_per_iteration,iteration_over_factorizations,"
-    "newton_iterations,solve_s,status,gradient_measure,peak_rss_mb,hessian_cpu_ms,factorization_cpu_ms,"
+    "case,kind,subdivisions,gravity,threads,unknowns,free_unknowns,hessian_nonzeros,energy_"
+    "gradient_ms,"
+    "hessian_ms,factorization_ms,iteration_ms,factorizations_per_iteration,iteration_over_"
+    "factorizations,"
+    "newton_iterations,solve_s,status,gradient_measure,peak_rss_mb,hessian_cpu_ms,factorization_"
+    "cpu_ms,"
     "iteration_cpu_ms,iteration_over_factorizations_cpu,dynamics_steps,dynamics_s,dynamics_status,"
-    "kinetic_iterations,kinetic_s,kinetic_status,solve_hessian_ms,solve_factorization_ms,solve_rest_ms,"
+    "kinetic_iterations,kinetic_s,kinetic_status,solve_hessian_ms,solve_factorization_ms,solve_"
+    "rest_ms,"
     "hessian_1thread_ms,hessian_speedup,iteration_over_solve_factorizations,newton_median_s,"
-    "comparison_newton_iterations,comparison_newton_status,hessian_slowest_core_ms,hessian_fastest_core_ms,"
-    "hessian_speedup_ceiling,deployment_iterations,deployment_s,deployment_status,deployment_peak_rss_mb";
+    "comparison_newton_iterations,comparison_newton_status,hessian_slowest_core_ms,hessian_fastest_"
+    "core_ms,"
+    "hessian_speedup_ceiling,deployment_iterations,deployment_s,deployment_status,deployment_peak_"
+    "rss_mb";
 
 std::string to_csv(const BenchResult& r) {
   std::ostringstream o;
   o.precision(6);
-  o << r.name << ',' << r.kind << ',' << r.subdivisions << ',' << r.gravity << ',' << r.threads << ','
-    << r.unknowns << ',' << r.free_unknowns << ',' << r.hessian_nonzeros << ',' << r.energy_gradient_ms << ','
-    << r.hessian_ms << ',' << r.factorization_ms << ',' << r.iteration_ms << ',' << r.factorizations_per_iteration
-    << ',' << r.iteration_over_factorizations << ',' << r.iterations << ',' << r.solve_s << ',' << r.status << ','
-    << r.gradient_measure << ',' << r.peak_rss_mb << ',' << r.hessian_cpu_ms << ',' << r.factorization_cpu_ms << ','
-    << r.iteration_cpu_ms << ',' << r.iteration_over_factorizations_cpu << ',' << r.dynamics_steps << ','
-    << r.dynamics_s << ',' << r.dynamics_status << ',' << r.kinetic_iterations << ',' << r.kinetic_s << ','
-    << r.kinetic_status << ',' << r.solve_hessian_ms << ',' << r.solve_factorization_ms << ',' << r.solve_rest_ms
-    << ',' << r.hessian_1thread_ms << ',' << r.hessian_speedup << ',' << r.iteration_over_solve_factorizations
-    << ',' << r.newton_median_s << ',' << r.comparison_newton_iterations << ',' << r.comparison_newton_status
-    << ',' << r.hessian_slowest_core_ms << ',' << r.hessian_fastest_core_ms << ',' << r.hessian_speedup_ceiling
-    << ',' << r.deployment_iterations << ',' << r.deployment_s << ',' << r.deployment_status << ','
-    << r.deployment_peak_rss_mb;
+  o << r.name << ',' << r.kind << ',' << r.subdivisions << ',' << r.gravity << ',' << r.threads
+    << ',' << r.unknowns << ',' << r.free_unknowns << ',' << r.hessian_nonzeros << ','
+    << r.energy_gradient_ms << ',' << r.hessian_ms << ',' << r.factorization_ms << ','
+    << r.iteration_ms << ',' << r.factorizations_per_iteration << ','
+    << r.iteration_over_factorizations << ',' << r.iterations << ',' << r.solve_s << ',' << r.status
+    << ',' << r.gradient_measure << ',' << r.peak_rss_mb << ',' << r.hessian_cpu_ms << ','
+    << r.factorization_cpu_ms << ',' << r.iteration_cpu_ms << ','
+    << r.iteration_over_factorizations_cpu << ',' << r.dynamics_steps << ',' << r.dynamics_s << ','
+    << r.dynamics_status << ',' << r.kinetic_iterations << ',' << r.kinetic_s << ','
+    << r.kinetic_status << ',' << r.solve_hessian_ms << ',' << r.solve_factorization_ms << ','
+    << r.solve_rest_ms << ',' << r.hessian_1thread_ms << ',' << r.hessian_speedup << ','
+    << r.iteration_over_solve_factorizations << ',' << r.newton_median_s << ','
+    << r.comparison_newton_iterations << ',' << r.comparison_newton_status << ','
+    << r.hessian_slowest_core_ms << ',' << r.hessian_fastest_core_ms << ','
+    << r.hessian_speedup_ceiling << ',' << r.deployment_iterations << ',' << r.deployment_s << ','
+    << r.deployment_status << ',' << r.deployment_peak_rss_mb;
   return o.str();
 }
 

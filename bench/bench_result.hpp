@@ -12,10 +12,12 @@ struct BenchResult {
   int subdivisions = 0, gravity = 0, threads = 1;
   long unknowns = 0, free_unknowns = 0, hessian_nonzeros = 0;
   double energy_gradient_ms = NAN, hessian_ms = NAN, factorization_ms = NAN;
-  double iteration_ms = NAN, factorizations_per_iteration = NAN, iteration_over_factorizations = NAN;
+  double iteration_ms = NAN, factorizations_per_iteration = NAN,
+         iteration_over_factorizations = NAN;
   // The same in process CPU time (all threads): with one thread, what the
   // wall times would be on an idle machine.
-  double hessian_cpu_ms = NAN, factorization_cpu_ms = NAN, iteration_cpu_ms = NAN, iteration_over_factorizations_cpu = NAN;
+  double hessian_cpu_ms = NAN, factorization_cpu_ms = NAN, iteration_cpu_ms = NAN,
+         iteration_over_factorizations_cpu = NAN;
   long iterations = -1;
   double solve_s = NAN, gradient_measure = NAN;
   std::string status = "skipped";
@@ -47,7 +49,8 @@ struct BenchResult {
   // over all of them would give, sum_c t_fastest / t_c. A virtual
   // machine's cores need not be equally fast: with one at 0.8 of the
   // other's speed, 2 threads are at most 1.8x faster than the faster core.
-  double hessian_slowest_core_ms = NAN, hessian_fastest_core_ms = NAN, hessian_speedup_ceiling = NAN;
+  double hessian_slowest_core_ms = NAN, hessian_fastest_core_ms = NAN,
+         hessian_speedup_ceiling = NAN;
   // One deployment step from the relaxed state: the average opening angle
   // raised by kDeploymentStep radians, solved by constrained Newton to the
   // same tolerance (deployment.hpp; the step's own iterations and time).

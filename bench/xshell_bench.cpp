@@ -23,15 +23,15 @@
 //   xshell_bench [--quick] [--reps N] [--graphs all|none|NAME,...] [--subdivisions 8,10]
 //                [--grids 4,8,14,25,44] [--no-solve] [--solvers] [--kinetic-limit N]
 //                [--samples all|none] [--csv FILE] [--data DIR]
-#include <CLI/CLI.hpp>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cstdlib>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -47,12 +47,12 @@
 #include "bench_measure.hpp"
 #include "bench_report.hpp"
 #include "bench_result.hpp"
+#include "integrators/common/linkage_objective.hpp"
 #include "integrators/deployment/average_constraint.hpp"
-#include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/deployment/deployment.hpp"
 #include "integrators/dynamics/ida_dynamics.hpp"
 #include "integrators/kinetic_damping/kinetic_damping.hpp"
-#include "integrators/common/linkage_objective.hpp"
+#include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/newton/newton.hpp"
 #include "io/config.hpp"
 #include "io/obj_reader.hpp"
@@ -71,7 +71,8 @@ struct BenchCase {
   LineGraph graph;
   int subdivisions = 8;
   bool gravity = false;
-  std::shared_ptr<const ProblemSetup> setup;  // a sample's, from its configuration; else the fields above
+  std::shared_ptr<const ProblemSetup>
+      setup;  // a sample's, from its configuration; else the fields above
 };
 
 // What run_case measures besides the factorization costs.
@@ -93,8 +94,8 @@ LineGraph wavy_grid(int n) {
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       const double x = spacing * j, y = spacing * i;
-      g.vertices.emplace_back(x + amplitude * std::sin(1.3 * i + 0.7 * j), y + amplitude * std::cos(0.9 * i - 1.1 * j),
-                              0.0);
+      g.vertices.emplace_back(x + amplitude * std::sin(1.3 * i + 0.7 * j),
+                              y + amplitude * std::cos(0.9 * i - 1.1 * j), 0.0);
     }
   auto free_end = [&](double x, double y) {
     g.vertices.emplace_back(x, y, 0.0);
@@ -114,7 +115,8 @@ LineGraph wavy_grid(int n) {
 }
 
 LinkageProblem make_problem(const BenchCase& c) {
-  if (c.setup) return LinkageProblem(RodLinkage(c.setup->graph, c.setup->options), c.setup->statics);
+  if (c.setup)
+    return LinkageProblem(RodLinkage(c.setup->graph, c.setup->options), c.setup->statics);
   LineGraph graph = c.graph;
   Eigen::Vector3d lo = graph.vertices.at(0), hi = lo;
   for (const auto& v : graph.vertices) {
@@ -137,7 +139,8 @@ LinkageProblem make_problem(const BenchCase& c) {
 // Median time of one numeric factorization of the free Hessian at the
 // start. An indefinite Hessian stops LL^T early: it is shifted as Newton
 // would shift it, so that the factorization timed is complete.
-double factorization_ms(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass, int reps, double* cpu_ms) {
+double factorization_ms(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass, int reps,
+                        double* cpu_ms) {
   CholeskySolver solver;
   Eigen::VectorXd shift;
   const Eigen::VectorXd* shift_ptr = nullptr;
@@ -149,7 +152,8 @@ double factorization_ms(const Eigen::SparseMatrix<double>& H, const Eigen::Vecto
     }
     shift_ptr = &shift;
   }
-  return median_ms(reps, [&] { solver.factorize(H, shift_ptr); }, cpu_ms);
+  return median_ms(
+      reps, [&] { solver.factorize(H, shift_ptr); }, cpu_ms);
 }
 
 // The relaxation of case c by damped dynamics and by kinetic damping, each
@@ -328,7 +332,8 @@ BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
       r.iteration_over_factorizations = 1e3 * total / (double(factorizations) * r.factorization_ms);
       r.iteration_over_solve_factorizations = total / total_factorization;
       r.iteration_cpu_ms = 1e3 * median(cpu);
-      r.iteration_over_factorizations_cpu = 1e3 * total_cpu / (double(factorizations) * r.factorization_cpu_ms);
+      r.iteration_over_factorizations_cpu =
+          1e3 * total_cpu / (double(factorizations) * r.factorization_cpu_ms);
     }
     r.peak_rss_mb = peak_rss_mb();
     if (result.converged()) {
@@ -366,7 +371,8 @@ BenchResult run_isolated(const BenchCase& c, const BenchSettings& settings) {
   close(fd[1]);
   std::string text;
   char buffer[4096];
-  for (ssize_t n; (n = read(fd[0], buffer, sizeof buffer)) > 0;) text.append(buffer, static_cast<size_t>(n));
+  for (ssize_t n; (n = read(fd[0], buffer, sizeof buffer)) > 0;)
+    text.append(buffer, static_cast<size_t>(n));
   close(fd[0]);
   int status = 0;
   waitpid(pid, &status, 0);
@@ -400,21 +406,28 @@ int main(int argc, char** argv) {
   bool quick = false, no_solve = false, solvers = false;
   long kinetic_limit = 200000;
   int reps = 5;
-  std::string graphs = "designs", subdivisions = "8,10", grids = "4,8,14,25,44", csv = "xshell_bench.csv";
+  std::string graphs = "designs", subdivisions = "8,10", grids = "4,8,14,25,44",
+              csv = "xshell_bench.csv";
   std::string data = std::string(XSHELL_SOURCE_DIR) + "/../shared/data/elasticrods";
   std::string samples = "all";
   app.add_flag("--quick", quick, "two small designs at subdivision 8, grids 4,8,14, 3 repetitions");
-  app.add_option("--reps", reps, "repetitions of each timing (median reported)")->check(CLI::PositiveNumber);
+  app.add_option("--reps", reps, "repetitions of each timing (median reported)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--graphs", graphs,
-                 "\"designs\" (the five architectural designs, mm), \"all\", \"none\", or names (file stems or "
+                 "\"designs\" (the five architectural designs, mm), \"all\", \"none\", or names "
+                 "(file stems or "
                  "prefixes), comma-separated");
   app.add_option("--subdivisions", subdivisions, "subdivisions for the graphs, comma-separated");
-  app.add_option("--grids", grids, "grid sizes (crossings per side), comma-separated; empty for none");
+  app.add_option("--grids", grids,
+                 "grid sizes (crossings per side), comma-separated; empty for none");
   app.add_flag("--no-solve", no_solve, "skip the Newton solves");
-  app.add_flag("--solvers", solvers, "also relax by damped dynamics and kinetic damping, with ratios to Newton");
-  app.add_option("--kinetic-limit", kinetic_limit, "iteration limit of kinetic damping")->check(CLI::PositiveNumber);
+  app.add_flag("--solvers", solvers,
+               "also relax by damped dynamics and kinetic damping, with ratios to Newton");
+  app.add_option("--kinetic-limit", kinetic_limit, "iteration limit of kinetic damping")
+      ->check(CLI::PositiveNumber);
   app.add_option("--samples", samples,
-                 "\"all\": the bundled samples (samples/*.obj) with samples/grid_gravity.json's settings; \"none\"")
+                 "\"all\": the bundled samples (samples/*.obj) with samples/grid_gravity.json's "
+                 "settings; \"none\"")
       ->check(CLI::IsMember({"all", "none"}));
   app.add_option("--csv", csv, "CSV file to write");
   app.add_option("--data", data, "folder of the real linkage graphs");
@@ -431,7 +444,8 @@ int main(int argc, char** argv) {
   // subdivisions of the samples and of the small shared graphs.
   const Config sample_config =
       read_config((fs::path(XSHELL_SOURCE_DIR) / "samples" / "grid_gravity.json").string());
-  const std::vector<std::string> designs = {"manta_ray", "darth_vader", "scary_face", "hourglass", "large"};
+  const std::vector<std::string> designs = {"manta_ray", "darth_vader", "scary_face", "hourglass",
+                                            "large"};
   if (graphs != "none") {
     std::vector<std::string> wanted;
     if (graphs == "designs") wanted = designs;
@@ -460,9 +474,9 @@ int main(int argc, char** argv) {
           c.kind = "graph";
           c.graph = read_obj(path.string());
           c.subdivisions = n;
-          const bool design = std::any_of(designs.begin(), designs.end(), [&](const std::string& d) {
-            return path.stem().string().rfind(d, 0) == 0;
-          });
+          const bool design = std::any_of(
+              designs.begin(), designs.end(),
+              [&](const std::string& d) { return path.stem().string().rfind(d, 0) == 0; });
           if (!design) {
             // The small graphs are of order 1, not millimetres: the samples'
             // laths (metres), their input shape as rest shape, gravity and
@@ -471,7 +485,8 @@ int main(int argc, char** argv) {
             config.subdivisions = n;
             config.rest_shape = RestShape::Input;
             config.supports.clear();
-            for (int v : corner_vertices(c.graph)) config.supports.push_back({v, {Fixed::Position}});
+            for (int v : corner_vertices(c.graph))
+              config.supports.push_back({v, {Fixed::Position}});
             config.loads.forces.clear();
             c.setup = std::make_shared<const ProblemSetup>(make_problem_setup(config, c.graph));
             c.gravity = c.setup->statics.gravity.squaredNorm() > 0.0;
@@ -492,7 +507,8 @@ int main(int argc, char** argv) {
       BenchCase c;
       c.name = "samples/" + path.stem().string();
       c.kind = "sample";
-      c.setup = std::make_shared<const ProblemSetup>(make_problem_setup(config, read_obj(path.string())));
+      c.setup =
+          std::make_shared<const ProblemSetup>(make_problem_setup(config, read_obj(path.string())));
       c.subdivisions = c.setup->options.subdivisions;
       c.gravity = c.setup->statics.gravity.squaredNorm() > 0.0;
       cases.push_back(c);
@@ -513,12 +529,16 @@ int main(int argc, char** argv) {
 #ifdef _OPENMP
   threads = omp_get_max_threads();
 #endif
-  std::printf("xshell_bench: %zu cases, %d repetitions, %d threads (OMP_WAIT_POLICY=%s); times in ms (solve in s), "
-              "medians; H1/Hn: Hessian on 1 thread / on all threads (same process, alternating); rest: iteration minus its Hessian and "
-              "factorizations; it/f: iteration / its factorizations (wall; factorization timed alone), it/fs: the same with "
-              "the factorizations as timed inside the solve, cpu: it/f in CPU time\n",
-              cases.size(), reps, threads,
-              std::getenv("OMP_WAIT_POLICY") != nullptr ? std::getenv("OMP_WAIT_POLICY") : "default");
+  std::printf(
+      "xshell_bench: %zu cases, %d repetitions, %d threads (OMP_WAIT_POLICY=%s); times in ms "
+      "(solve in s), "
+      "medians; H1/Hn: Hessian on 1 thread / on all threads (same process, alternating); rest: "
+      "iteration minus its Hessian and "
+      "factorizations; it/f: iteration / its factorizations (wall; factorization timed alone), "
+      "it/fs: the same with "
+      "the factorizations as timed inside the solve, cpu: it/f in CPU time\n",
+      cases.size(), reps, threads,
+      std::getenv("OMP_WAIT_POLICY") != nullptr ? std::getenv("OMP_WAIT_POLICY") : "default");
   std::printf("BLAS: %s\n", loaded_blas().c_str());
   print_row_header();
   std::ofstream out(csv);

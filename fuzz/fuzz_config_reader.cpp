@@ -9,8 +9,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
-    const xshell::Config config =
-        xshell::parse_config(std::string(reinterpret_cast<const char*>(data), size), "fuzz.json", "");
+    const xshell::Config config = xshell::parse_config(
+        std::string(reinterpret_cast<const char*>(data), size), "fuzz.json", "");
     (void)xshell::to_json(config);
   } catch (const xshell::InputError&) {
   }

@@ -26,14 +26,14 @@ const Names<RestShape> kRestShapes = {{RestShape::Input, "input"},
 const Names<JointModel> kJointModels = {{JointModel::Rotation, "rotation"},
                                         {JointModel::EdgeVectors, "edge_vectors"}};
 const Names<SectionShape> kShapes = {{SectionShape::Rectangle, "rectangle"},
-                                          {SectionShape::Ellipse, "ellipse"}};
+                                     {SectionShape::Ellipse, "ellipse"}};
 const Names<SolverMethod> kMethods = {{SolverMethod::Newton, "newton"},
                                       {SolverMethod::Dynamics, "dynamics"},
                                       {SolverMethod::KineticDamping, "kinetic-damping"}};
 const Names<LineSearchSetting> kLineSearches = {{LineSearchSetting::Energy, "energy"},
                                                 {LineSearchSetting::Kinsol, "kinsol"}};
 const Names<MassSetting> kMasses = {{MassSetting::Physical, "physical"},
-                                  {MassSetting::Fictitious, "fictitious"}};
+                                    {MassSetting::Fictitious, "fictitious"}};
 const Names<StartSetting> kStarts = {{StartSetting::SlowManifold, "slow_manifold"},
                                      {StartSetting::Rest, "rest"}};
 const Names<OutputFormat> kFormats = {{OutputFormat::Binary, "binary"},
@@ -128,7 +128,8 @@ CrossSectionConfig read_cross_section(const JsonField& f, const CrossSectionConf
 MaterialConfig read_material(const JsonField& f, const MaterialConfig* base) {
   f.check_keys({"young_modulus", "poisson_ratio", "density", "strength", "cross_section"});
   MaterialConfig m = base ? *base : MaterialConfig{};
-  if (auto e = base ? f.find("young_modulus") : f.require("young_modulus")) m.young_modulus = positive(*e);
+  if (auto e = base ? f.find("young_modulus") : f.require("young_modulus"))
+    m.young_modulus = positive(*e);
   if (auto nu = f.find("poisson_ratio")) m.poisson_ratio = inside(*nu, -1, 0.5, "(-1, 0.5)");
   if (auto rho = f.find("density")) m.density = non_negative(*rho);
   if (auto strength = f.find("strength")) m.strength = positive(*strength);
@@ -150,7 +151,8 @@ std::vector<RodMaterial> read_rods(const JsonField& f, const MaterialConfig& bas
     if (rod) {
       r.selector = RodSelector::Rod;
       r.rod = rod->integer();
-      if (r.rod < 0) rod->fail("a rod index is 0-based and must be >= 0, got " + std::to_string(r.rod));
+      if (r.rod < 0)
+        rod->fail("a rod index is 0-based and must be >= 0, got " + std::to_string(r.rod));
     } else if (edges) {
       r.selector = RodSelector::Edges;
       for (const JsonField& edge : edges->elements()) {
@@ -160,8 +162,10 @@ std::vector<RodMaterial> read_rods(const JsonField& f, const MaterialConfig& bas
                     std::to_string(ends.size()));
         const std::array<int, 2> e = {vertex_index(ends[0]), vertex_index(ends[1])};
         for (const auto& earlier : r.edges)
-          if ((earlier[0] == e[0] && earlier[1] == e[1]) || (earlier[0] == e[1] && earlier[1] == e[0]))
-            edge.fail("edge [" + std::to_string(e[0]) + ", " + std::to_string(e[1]) + "] is listed twice");
+          if ((earlier[0] == e[0] && earlier[1] == e[1]) ||
+              (earlier[0] == e[1] && earlier[1] == e[0]))
+            edge.fail("edge [" + std::to_string(e[0]) + ", " + std::to_string(e[1]) +
+                      "] is listed twice");
         r.edges.push_back(e);
       }
       if (r.edges.empty()) edges->fail("must list at least one edge [i, j]");
@@ -206,10 +210,11 @@ std::vector<Support> read_supports(const JsonField& f) {
         const bool held = std::find(s.fix.begin(), s.fix.end(), Fixed::Position) != s.fix.end() ||
                           std::find(s.fix.begin(), s.fix.end(), roller) != s.fix.end();
         if (s.displacement[c] != 0.0 && !held)
-          components[c].fail("moves the " + name_of(roller, kFixed) +
-                             " component, which this support leaves free; only held components can be "
-                             "displaced: add \"position\" or \"" + name_of(roller, kFixed) +
-                             "\" to fix, or give 0");
+          components[c].fail(
+              "moves the " + name_of(roller, kFixed) +
+              " component, which this support leaves free; only held components can be "
+              "displaced: add \"position\" or \"" +
+              name_of(roller, kFixed) + "\" to fix, or give 0");
       }
     }
     supports.push_back(s);
@@ -309,8 +314,8 @@ Config parse_config(const std::string& text, const std::string& name, const std:
   const JsonField root(document, "", name);
   if (!document.is_object())
     root.fail("the configuration must be a JSON object { ... }, got " + root.describe());
-  root.check_keys({"linkage", "subdivisions", "rest_shape", "joints", "material", "rods", "supports",
-                   "loads", "solver", "output", "deployment"});
+  root.check_keys({"linkage", "subdivisions", "rest_shape", "joints", "material", "rods",
+                   "supports", "loads", "solver", "output", "deployment"});
   Config c;
   c.source = name;
   c.linkage = file_path(root.require("linkage"), base_dir);
@@ -358,7 +363,8 @@ void check_vertices(const Config& config, const LineGraph& graph) {
       check(config.rods[i].vertices[k], key + ".vertices[" + std::to_string(k) + "]");
     for (std::size_t k = 0; k < config.rods[i].edges.size(); ++k)
       for (int m = 0; m < 2; ++m)
-        check(config.rods[i].edges[k][m], key + ".edges[" + std::to_string(k) + "][" + std::to_string(m) + "]");
+        check(config.rods[i].edges[k][m],
+              key + ".edges[" + std::to_string(k) + "][" + std::to_string(m) + "]");
   }
   if (config.deployment)
     for (std::size_t i = 0; i < config.deployment->joint_angles.size(); ++i)
@@ -395,7 +401,8 @@ nlohmann::json to_json(const Config& c) {
   for (const Support& s : c.supports) {
     nlohmann::json fix = nlohmann::json::array();
     for (Fixed f : s.fix) fix.push_back(name_of(f, kFixed));
-    supports.push_back({{"vertex", s.vertex}, {"fix", fix}, {"displacement", vector_json(s.displacement)}});
+    supports.push_back(
+        {{"vertex", s.vertex}, {"fix", fix}, {"displacement", vector_json(s.displacement)}});
   }
   nlohmann::json forces = nlohmann::json::array();
   for (const PointForce& f : c.loads.forces)

@@ -85,16 +85,16 @@ enum class Fixed {
 // "material.cross_section" (every rod's, unless "rods" overrides it).
 struct CrossSectionConfig {
   SectionShape shape = SectionShape::Rectangle;  // "shape", default "rectangle"
-  double width = 0;                                        // "width", > 0, required; length
-  double height = 0;                                       // "height", > 0, required; length
+  double width = 0;                              // "width", > 0, required; length
+  double height = 0;                             // "height", > 0, required; length
 };
 
 // "material".
 struct MaterialConfig {
-  double young_modulus = 0;        // "young_modulus", > 0, required; stress
-  double poisson_ratio = 0.3;      // "poisson_ratio", in (-1, 0.5), default 0.3
-  double density = 0;              // "density", >= 0, default 0; mass / length^3
-  std::optional<double> strength;  // "strength", > 0, optional; stress, for utilisation reports
+  double young_modulus = 0;          // "young_modulus", > 0, required; stress
+  double poisson_ratio = 0.3;        // "poisson_ratio", in (-1, 0.5), default 0.3
+  double density = 0;                // "density", >= 0, default 0; mass / length^3
+  std::optional<double> strength;    // "strength", > 0, optional; stress, for utilisation reports
   CrossSectionConfig cross_section;  // "cross_section", required
 };
 
@@ -102,10 +102,11 @@ struct MaterialConfig {
 struct Support {
   int vertex = 0;          // "vertex", >= 0, required; 0-based index into the linkage file
   std::vector<Fixed> fix;  // "fix", required: non-empty, no duplicates
-  Eigen::Vector3d displacement = Eigen::Vector3d::Zero();  // "displacement", [dx, dy, dz],
-                           // default [0, 0, 0]; length: the held position moves to input +
-                           // displacement. A non-zero component must be held by "position" or
-                           // by its roller "x", "y", "z" (rejected otherwise)
+  Eigen::Vector3d displacement =
+      Eigen::Vector3d::Zero();  // "displacement", [dx, dy, dz],
+                                // default [0, 0, 0]; length: the held position moves to input +
+                                // displacement. A non-zero component must be held by "position" or
+                                // by its roller "x", "y", "z" (rejected otherwise)
 };
 
 // An element of "rods" (default: none): a material and section for some full
@@ -144,20 +145,22 @@ struct Loads {
 // "solver".
 struct SolverOptions {
   SolverMethod method = SolverMethod::Newton;  // "method", default "newton"
-  double gradient_tolerance = 1e-6;      // "gradient_tolerance", > 0, default 1e-6; dimensionless
-  int max_iterations = 100;              // "max_iterations", >= 1, default 100 (newton)
+  double gradient_tolerance = 1e-6;  // "gradient_tolerance", > 0, default 1e-6; dimensionless
+  int max_iterations = 100;          // "max_iterations", >= 1, default 100 (newton)
   LineSearchSetting line_search = LineSearchSetting::Energy;  // "line_search", default "energy"
-  MassSetting mass = MassSetting::Physical;  // "mass", default "physical"
-  std::optional<double> damping;         // "damping", >= 0 or "auto" (nullopt, the default);
-                                         // 1 / time
-  bool first_order = false;              // "first_order", default false: integrate the
-                                         // first-order (gradient flow) system instead
+  MassSetting mass = MassSetting::Physical;                   // "mass", default "physical"
+  std::optional<double> damping;  // "damping", >= 0 or "auto" (nullopt, the default);
+                                  // 1 / time
+  bool first_order = false;       // "first_order", default false: integrate the
+                                  // first-order (gradient flow) system instead
   StartSetting start = StartSetting::SlowManifold;  // "start", default "slow_manifold"
-  std::optional<int> max_steps;          // "max_steps", >= 1: time steps (dynamics) or leapfrog
-                                         // iterations (kinetic-damping); default: step_limit()
+  std::optional<int> max_steps;  // "max_steps", >= 1: time steps (dynamics) or leapfrog
+                                 // iterations (kinetic-damping); default: step_limit()
   // max_steps, or its default for the method: 5000 time steps of damped
   // dynamics, 1000000 leapfrog iterations of kinetic damping.
-  int step_limit() const { return max_steps.value_or(method == SolverMethod::KineticDamping ? 1000000 : 5000); }
+  int step_limit() const {
+    return max_steps.value_or(method == SolverMethod::KineticDamping ? 1000000 : 5000);
+  }
 };
 
 // "output".

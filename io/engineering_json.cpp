@@ -20,16 +20,18 @@ nlohmann::json engineering_json(const EngineeringResults& r, const Eigen::Vector
   using nlohmann::json;
   json reactions = json::array();
   for (const SupportReaction& s : r.reactions)
-    reactions.push_back({{"vertex", s.vertex},
-                         {"position", vec(s.position + origin)},
-                         {"force", vec(s.force)},
-                         {"moment", s.moment ? vec(*s.moment) : json(nullptr)},
-                         {"opening_torque", s.opening_torque ? json(*s.opening_torque) : json(nullptr)}});
+    reactions.push_back(
+        {{"vertex", s.vertex},
+         {"position", vec(s.position + origin)},
+         {"force", vec(s.force)},
+         {"moment", s.moment ? vec(*s.moment) : json(nullptr)},
+         {"opening_torque", s.opening_torque ? json(*s.opening_torque) : json(nullptr)}});
   const LinkageStresses& st = r.stresses;
   json stresses = {{"max_normal_stress", location(st.max_normal_stress, origin)},
                    {"max_torsional_shear", location(st.max_torsional_shear, origin)},
                    {"max_axial_force", location(st.max_axial_force, origin)},
-                   {"max_utilisation", st.max_utilisation ? location(*st.max_utilisation, origin) : json(nullptr)}};
+                   {"max_utilisation",
+                    st.max_utilisation ? location(*st.max_utilisation, origin) : json(nullptr)}};
   json joints = json::array();
   for (const JointForce& j : r.joint_forces)
     joints.push_back({{"vertex", j.vertex},
@@ -41,8 +43,10 @@ nlohmann::json engineering_json(const EngineeringResults& r, const Eigen::Vector
   json out = {{"reactions", reactions}, {"stresses", stresses}, {"joint_forces", joints}};
   if (const auto& s = r.stability) {
     out["lowest_eigenvalues"] = s->lowest_eigenvalues;
-    out["buckling_load_factor"] = s->buckling_load_factor ? json(*s->buckling_load_factor) : json(nullptr);
-    out["stability_analysis"] = {{"eigenvalues", s->eigen_status}, {"buckling", s->buckling_status}};
+    out["buckling_load_factor"] =
+        s->buckling_load_factor ? json(*s->buckling_load_factor) : json(nullptr);
+    out["stability_analysis"] = {{"eigenvalues", s->eigen_status},
+                                 {"buckling", s->buckling_status}};
   }
   return out;
 }

@@ -33,10 +33,10 @@ namespace xshell {
 // The stability analysis, as plain values (integrators/stability_analysis.hpp
 // computes them).
 struct StabilityValues {
-  std::vector<double> lowest_eigenvalues;     // of H phi = lambda M phi, ascending; 1/time^2
+  std::vector<double> lowest_eigenvalues;      // of H phi = lambda M phi, ascending; 1/time^2
   std::optional<double> buckling_load_factor;  // null when there is none
-  std::string buckling_status;                // "found" | "no_buckling" | "unloaded_unstable" | ...
-  std::string eigen_status;                   // "converged" or why not
+  std::string buckling_status;  // "found" | "no_buckling" | "unloaded_unstable" | ...
+  std::string eigen_status;     // "converged" or why not
 };
 
 struct EngineeringResults {

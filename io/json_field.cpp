@@ -134,9 +134,8 @@ nlohmann::json parse_json(const std::string& text, const std::string& file) {
           return tracker.on_event(event, parsed);
         });
   } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(file + ":" + line_and_column(text, e.byte) +
-                     ": invalid JSON: " + parse_error_reason(e.what()) +
-                     non_finite_hint(text, e.byte));
+    throw InputError(file + ":" + line_and_column(text, e.byte) + ": invalid JSON: " +
+                     parse_error_reason(e.what()) + non_finite_hint(text, e.byte));
   } catch (const nlohmann::json::out_of_range& e) {
     // 406: a number literal beyond the range of double ("1e999"), reported
     // before the value reaches the tracker.

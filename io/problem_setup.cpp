@@ -7,12 +7,18 @@ namespace xshell {
 namespace {
 SupportDof to_support(Fixed f) {
   switch (f) {
-    case Fixed::Position: return SupportDof::Position;
-    case Fixed::X: return SupportDof::X;
-    case Fixed::Y: return SupportDof::Y;
-    case Fixed::Z: return SupportDof::Z;
-    case Fixed::Orientation: return SupportDof::Orientation;
-    case Fixed::OpeningAngle: return SupportDof::OpeningAngle;
+    case Fixed::Position:
+      return SupportDof::Position;
+    case Fixed::X:
+      return SupportDof::X;
+    case Fixed::Y:
+      return SupportDof::Y;
+    case Fixed::Z:
+      return SupportDof::Z;
+    case Fixed::Orientation:
+      return SupportDof::Orientation;
+    case Fixed::OpeningAngle:
+      return SupportDof::OpeningAngle;
   }
   return SupportDof::Position;
 }
@@ -39,9 +45,9 @@ std::vector<Material> segment_materials(const Config& config, const LineGraph& g
     switch (entry.selector) {
       case RodSelector::Rod:
         if (entry.rod >= num_rods)
-          throw InputError(key + ".rod: rod " + std::to_string(entry.rod) + " is out of range; the linkage has " +
-                           std::to_string(num_rods) + " rods (0-based indices 0 to " +
-                           std::to_string(num_rods - 1) +
+          throw InputError(key + ".rod: rod " + std::to_string(entry.rod) +
+                           " is out of range; the linkage has " + std::to_string(num_rods) +
+                           " rods (0-based indices 0 to " + std::to_string(num_rods - 1) +
                            ", numbered as the rod_id cell data of the output's rods_*.vtp)");
         selected.push_back(entry.rod);
         break;
@@ -50,11 +56,13 @@ std::vector<Material> segment_materials(const Config& config, const LineGraph& g
           const auto [a, b] = entry.edges[k];
           int found = -1;
           for (std::size_t e = 0; e < graph.edges.size() && found < 0; ++e)
-            if ((graph.edges[e][0] == a && graph.edges[e][1] == b) || (graph.edges[e][0] == b && graph.edges[e][1] == a))
+            if ((graph.edges[e][0] == a && graph.edges[e][1] == b) ||
+                (graph.edges[e][0] == b && graph.edges[e][1] == a))
               found = static_cast<int>(e);
           if (found < 0)
-            throw InputError(key + ".edges[" + std::to_string(k) + "]: vertices " + std::to_string(a) + " and " +
-                             std::to_string(b) + " are not joined by an edge of the linkage");
+            throw InputError(key + ".edges[" + std::to_string(k) + "]: vertices " +
+                             std::to_string(a) + " and " + std::to_string(b) +
+                             " are not joined by an edge of the linkage");
           selected.push_back(topology.segments[found].rod);
         }
         break;
@@ -77,8 +85,8 @@ ProblemSetup make_problem_setup(const Config& config, const LineGraph& graph) {
   // to change, rather than failing in an allocation (or the kernel's OOM killer).
   const double rod_edges = static_cast<double>(graph.edges.size()) * config.subdivisions;
   if (rod_edges > kMaxRodEdges)
-    throw InputError(config.source + ": subdivisions: " + std::to_string(config.subdivisions) + " x " +
-                     std::to_string(graph.edges.size()) + " segments makes " +
+    throw InputError(config.source + ": subdivisions: " + std::to_string(config.subdivisions) +
+                     " x " + std::to_string(graph.edges.size()) + " segments makes " +
                      std::to_string(static_cast<long long>(rod_edges)) + " rod edges; at most " +
                      std::to_string(kMaxRodEdges) + " are supported");
   ProblemSetup setup;
@@ -97,7 +105,8 @@ ProblemSetup make_problem_setup(const Config& config, const LineGraph& graph) {
       config.joints == JointModel::EdgeVectors ? JointKind::EdgeVectors : JointKind::Rotation;
   setup.options.material = model_material(config.material);
   if (!config.rods.empty())
-    setup.options.segment_materials = segment_materials(config, setup.graph, build_topology(setup.graph));
+    setup.options.segment_materials =
+        segment_materials(config, setup.graph, build_topology(setup.graph));
 
   for (const Support& s : config.supports) {
     VertexSupport vs{s.vertex, {}, s.displacement};
@@ -105,7 +114,8 @@ ProblemSetup make_problem_setup(const Config& config, const LineGraph& graph) {
     setup.statics.supports.push_back(vs);
   }
   setup.statics.gravity = config.loads.gravity;
-  for (const PointForce& f : config.loads.forces) setup.statics.forces.push_back({f.vertex, f.force});
+  for (const PointForce& f : config.loads.forces)
+    setup.statics.forces.push_back({f.vertex, f.force});
   return setup;
 }
 

@@ -10,10 +10,10 @@
 namespace xshell {
 
 struct ProblemSetup {
-  LineGraph graph;                                  // recentred
+  LineGraph graph;                                   // recentred
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // input bounding-box centre
   LinkageOptions options;
-  StaticsSetup statics;                             // forces, gravity and supports
+  StaticsSetup statics;  // forces, gravity and supports
 };
 
 // Most rod edges (graph edges x subdivisions) a run may have: far above the

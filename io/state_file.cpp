@@ -29,7 +29,9 @@ const char* rest_name(RestShape r) { return r == RestShape::Input ? "input" : "s
 // "reference_frame" (joint.hpp); absent in files written before edge-vector
 // joints existed, which are all rotation joints. A state of the other kind is
 // converted on restore (RodLinkage::restore).
-const char* joint_kind_name(JointKind k) { return k == JointKind::Rotation ? "rotation" : "edge_vectors"; }
+const char* joint_kind_name(JointKind k) {
+  return k == JointKind::Rotation ? "rotation" : "edge_vectors";
+}
 
 JointKind joint_kind(const json& doc) {
   const std::string name = doc.value("joint_kind", "rotation");
@@ -67,14 +69,19 @@ std::string graph_hash(const LineGraph& graph) {
   return buffer;
 }
 
-void write_state(const std::string& path, const RodLinkage& linkage, const Eigen::Vector3d& origin) {
+void write_state(const std::string& path, const RodLinkage& linkage,
+                 const Eigen::Vector3d& origin) {
   const LinkageState state = linkage.state();
   json segments = json::array();
   for (const SegmentState& s : state.segments) {
     json nodes = json::array(), frames = json::array();
     for (const auto& x : s.nodes) nodes.push_back(vec(x));
-    for (const auto& f : s.source_frames) frames.push_back({{"tangent", vec(f.tangent)}, {"d1", vec(f.d1)}});
-    segments.push_back({{"nodes", nodes}, {"thetas", s.thetas}, {"source_frames", frames}, {"twist_hints", s.twist_hints}});
+    for (const auto& f : s.source_frames)
+      frames.push_back({{"tangent", vec(f.tangent)}, {"d1", vec(f.d1)}});
+    segments.push_back({{"nodes", nodes},
+                        {"thetas", s.thetas},
+                        {"source_frames", frames},
+                        {"twist_hints", s.twist_hints}});
   }
   json joints = json::array();
   for (size_t j = 0; j < state.joints.size(); ++j) {
@@ -108,11 +115,13 @@ void read_state(const std::string& path, RodLinkage& linkage, const Eigen::Vecto
     throw InputError(path + ": not a valid state file (" + e.what() + ")");
   }
   try {
-    if (doc.value("format", "") != "xshell-state") throw InputError(path + ": not an xshell state file");
+    if (doc.value("format", "") != "xshell-state")
+      throw InputError(path + ": not an xshell state file");
     const json expected = fingerprint(linkage);
     if (doc.at("fingerprint") != expected)
       throw InputError(path + ": the state belongs to another linkage (its fingerprint " +
-                       doc.at("fingerprint").dump() + " differs from this run's " + expected.dump() + ")");
+                       doc.at("fingerprint").dump() + " differs from this run's " +
+                       expected.dump() + ")");
     const Eigen::Vector3d saved_origin = to_vec(doc.at("origin"));
     const Eigen::Vector3d shift = saved_origin - origin;  // zero for the same graph
     LinkageState state;
@@ -121,7 +130,8 @@ void read_state(const std::string& path, RodLinkage& linkage, const Eigen::Vecto
       SegmentState seg;
       for (const json& x : s.at("nodes")) seg.nodes.push_back(to_vec(x) + shift);
       seg.thetas = s.at("thetas").get<std::vector<double>>();
-      for (const json& f : s.at("source_frames")) seg.source_frames.push_back({to_vec(f.at("tangent")), to_vec(f.at("d1"))});
+      for (const json& f : s.at("source_frames"))
+        seg.source_frames.push_back({to_vec(f.at("tangent")), to_vec(f.at("d1"))});
       seg.twist_hints = s.at("twist_hints").get<std::vector<double>>();
       state.segments.push_back(std::move(seg));
     }

@@ -11,7 +11,8 @@
 //                   "graph_hash": "16 hex digits"},
 //   "origin": [x, y, z],
 //   "segments": [{"nodes": [[x, y, z], ...], "thetas": [...],
-//                 "source_frames": [{"tangent": [...], "d1": [...]}, ...], "twist_hints": [...]}, ...],
+//                 "source_frames": [{"tangent": [...], "d1": [...]}, ...], "twist_hints": [...]},
+//                 ...],
 //   "joints": [{"vertex": v, "params": [p(3), omega(3), alpha, l_A, l_B],
 //               "reference_frame": [[b1], [b2], [n]]}, ...]
 // }

@@ -19,7 +19,8 @@ struct DifferenceReport {
 
 // Compares an analytic gradient g(x) with central differences of f.
 inline DifferenceReport check_gradient(const std::function<double(const Eigen::VectorXd&)>& f,
-                                       const Eigen::VectorXd& x, const Eigen::VectorXd& g, double h) {
+                                       const Eigen::VectorXd& x, const Eigen::VectorXd& g,
+                                       double h) {
   DifferenceReport r;
   r.scale = g.cwiseAbs().maxCoeff();
   for (Eigen::Index i = 0; i < x.size(); ++i) {
@@ -34,8 +35,9 @@ inline DifferenceReport check_gradient(const std::function<double(const Eigen::V
 }
 
 // Compares an analytic Hessian with central differences of the gradient.
-inline DifferenceReport check_hessian(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& grad,
-                                      const Eigen::VectorXd& x, const Eigen::MatrixXd& hessian, double h) {
+inline DifferenceReport check_hessian(
+    const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& grad, const Eigen::VectorXd& x,
+    const Eigen::MatrixXd& hessian, double h) {
   DifferenceReport r;
   r.scale = hessian.cwiseAbs().maxCoeff();
   for (Eigen::Index i = 0; i < x.size(); ++i) {

@@ -25,8 +25,8 @@ inline void report_skip(const std::string& reason) {
 }  // namespace xshell::test
 
 // Use as a statement in a test case: XSHELL_SKIP("why");
-#define XSHELL_SKIP(reason)                 \
-  do {                                      \
-    ::xshell::test::report_skip(reason);    \
-    return;                                 \
+#define XSHELL_SKIP(reason)              \
+  do {                                   \
+    ::xshell::test::report_skip(reason); \
+    return;                              \
   } while (false)

@@ -40,12 +40,14 @@ int main(int argc, char** argv) {
   const char* filter = nullptr;
   for (int i = 1; i < argc; ++i)
     for (const char* option : {"--test-case=", "-tc="})
-      if (std::strncmp(argv[i], option, std::strlen(option)) == 0) filter = argv[i] + std::strlen(option);
+      if (std::strncmp(argv[i], option, std::strlen(option)) == 0)
+        filter = argv[i] + std::strlen(option);
   if (filter != nullptr && g_test_cases_run == 0) {
-    std::fprintf(stderr,
-                 "test_main: no test case matches \"%s\": nothing was checked (a test case name with ';'? "
-                 "CTest cuts names there)\n",
-                 filter);
+    std::fprintf(
+        stderr,
+        "test_main: no test case matches \"%s\": nothing was checked (a test case name with ';'? "
+        "CTest cuts names there)\n",
+        filter);
     return 1;
   }
   return status;

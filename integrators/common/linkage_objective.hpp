@@ -4,8 +4,8 @@
 // update and joint fold) that the solvers call between iterations.
 #pragma once
 
-#include "linkage/statics_problem.hpp"
 #include "integrators/common/objective.hpp"
+#include "linkage/statics_problem.hpp"
 
 namespace xshell {
 
@@ -17,7 +17,9 @@ class LinkageObjective : public Objective {
   Eigen::VectorXd get() const override { return problem_.free_dofs(); }
   void set(const Eigen::VectorXd& q) override { problem_.set_free_dofs(q); }
   double energy() const override { return problem_.energy().total(); }
-  double set_and_energy(const Eigen::VectorXd& q) override { return problem_.set_free_dofs_and_energy(q); }
+  double set_and_energy(const Eigen::VectorXd& q) override {
+    return problem_.set_free_dofs_and_energy(q);
+  }
   Eigen::VectorXd gradient() const override { return problem_.free_gradient(); }
   const Eigen::SparseMatrix<double>& hessian() override { return problem_.free_hessian(); }
   Eigen::VectorXd gradient_weights() const override { return problem_.gradient_weights(); }

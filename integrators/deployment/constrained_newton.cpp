@@ -6,11 +6,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "integrators/linear_algebra/cholesky_solver.hpp"
-#include "integrators/newton/descent_step.hpp"
 #include "integrators/common/objective_evaluator.hpp"
-#include "integrators/linear_algebra/shifted_factorization.hpp"
 #include "integrators/common/wall_clock.hpp"
+#include "integrators/linear_algebra/cholesky_solver.hpp"
+#include "integrators/linear_algebra/shifted_factorization.hpp"
+#include "integrators/newton/descent_step.hpp"
 
 namespace xshell {
 

@@ -12,8 +12,8 @@
 // the velocity is carried through B.
 #pragma once
 
-#include "integrators/deployment/average_constraint.hpp"
 #include "integrators/common/objective.hpp"
+#include "integrators/deployment/average_constraint.hpp"
 
 namespace xshell {
 

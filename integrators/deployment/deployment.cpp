@@ -7,11 +7,11 @@
 #include <optional>
 #include <stdexcept>
 
+#include "integrators/common/linkage_objective.hpp"
+#include "integrators/common/wall_clock.hpp"
 #include "integrators/deployment/average_constraint.hpp"
 #include "integrators/deployment/constrained_newton.hpp"
 #include "integrators/deployment/constrained_objective.hpp"
-#include "integrators/common/linkage_objective.hpp"
-#include "integrators/common/wall_clock.hpp"
 
 namespace xshell {
 

@@ -37,8 +37,8 @@
 #include <vector>
 
 #include "integrators/dynamics/ida_dynamics.hpp"
-#include "linkage/statics_problem.hpp"
 #include "integrators/newton/newton.hpp"
+#include "linkage/statics_problem.hpp"
 
 namespace xshell {
 

@@ -28,8 +28,10 @@ DampingChoice choose_damping(const DynamicsOptions& options, CholeskySolver& sol
   // Rayleigh: C = b (H + mu M).
   double trace = 0.0;
   for (Eigen::Index i = 0; i < H.rows(); ++i) trace += std::abs(H.coeff(i, i));
-  const double floor = std::max(options.mode_floor * trace / mass.sum(), std::numeric_limits<double>::min());
-  choice.modes = estimate_modes(solver, H, mass, options.damping_iterations, options.shift, 4, warm, floor);
+  const double floor =
+      std::max(options.mode_floor * trace / mass.sum(), std::numeric_limits<double>::min());
+  choice.modes =
+      estimate_modes(solver, H, mass, options.damping_iterations, options.shift, 4, warm, floor);
   const ModeEstimate& m = choice.modes;
   choice.factorizations = m.lowest.factorizations;
   double mu = 0.0, b = 0.0, omega = 0.0;
@@ -53,15 +55,18 @@ DampingChoice choose_damping(const DynamicsOptions& options, CholeskySolver& sol
     choice.unstable = m.lowest.eigenvalue < 0.0 && m.lowest.shifted;
     choice.zero_mode = !choice.unstable;
     const double negative = std::max(-m.lowest.eigenvalue, 0.0);
-    const double lambda = m.stable.ok ? std::max(m.stable.eigenvalue, floor) : std::max(negative, floor);
+    const double lambda =
+        m.stable.ok ? std::max(m.stable.eigenvalue, floor) : std::max(negative, floor);
     // An (almost) zero mode, such as a joint free to open at the start,
     // still gets damping C x = b mu M x: mu is at least a fraction of the
     // lowest stable eigenvalue, or the mode would move without bound.
-    mu = std::max((options.form == DynamicsForm::SecondOrder ? options.unstable_margin : 2.0) * negative,
-                  options.zero_mode_fraction * lambda);
+    mu = std::max(
+        (options.form == DynamicsForm::SecondOrder ? options.unstable_margin : 2.0) * negative,
+        options.zero_mode_fraction * lambda);
     const Eigen::VectorXd shift = mu * mass;
     ++choice.factorizations;
-    if (solver.factorize(H, &shift) != FactorizationStatus::PositiveDefinite) mu = std::max(mu, m.certified_shift);
+    if (solver.factorize(H, &shift) != FactorizationStatus::PositiveDefinite)
+      mu = std::max(mu, m.certified_shift);
     omega = std::sqrt(lambda);
     b = 2.0 * omega / (lambda + mu);
   }

@@ -7,9 +7,9 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/dynamics/ida_dynamics.hpp"
 #include "integrators/dynamics/mass_and_damping.hpp"
+#include "integrators/linear_algebra/cholesky_solver.hpp"
 
 namespace xshell {
 

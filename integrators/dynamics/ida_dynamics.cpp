@@ -9,14 +9,14 @@
 #include <limits>
 #include <stdexcept>
 
-#include "integrators/dynamics/damping_choice.hpp"
-#include "integrators/dynamics/ida_step_cap.hpp"
-#include "integrators/dynamics/ida_endgame.hpp"
-#include "integrators/dynamics/mass_and_damping.hpp"
-#include "integrators/newton/newton.hpp"
 #include "integrators/common/objective_evaluator.hpp"
-#include "integrators/linear_algebra/sundials_handles.hpp"
 #include "integrators/common/wall_clock.hpp"
+#include "integrators/dynamics/damping_choice.hpp"
+#include "integrators/dynamics/ida_endgame.hpp"
+#include "integrators/dynamics/ida_step_cap.hpp"
+#include "integrators/dynamics/mass_and_damping.hpp"
+#include "integrators/linear_algebra/sundials_handles.hpp"
+#include "integrators/newton/newton.hpp"
 
 namespace xshell {
 

@@ -52,8 +52,8 @@
 #include <functional>
 #include <string>
 
-#include "integrators/dynamics/ida_system.hpp"
 #include "integrators/common/objective.hpp"
+#include "integrators/dynamics/ida_system.hpp"
 #include "integrators/linear_algebra/shifted_factorization.hpp"
 
 namespace xshell {

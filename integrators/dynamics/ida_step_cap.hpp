@@ -46,8 +46,8 @@ class DefiniteStepCap {
   Options options_;
   double cap_ = std::numeric_limits<double>::infinity();
   int wait_ = options_.wait;
-  int since_failure_ = 0;   // accepted steps under the current cap
-  int since_lift_ = -1;     // accepted steps since the last lift (-1: none pending)
+  int since_failure_ = 0;  // accepted steps under the current cap
+  int since_lift_ = -1;    // accepted steps since the last lift (-1: none pending)
 };
 
 }  // namespace xshell

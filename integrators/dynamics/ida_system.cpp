@@ -141,8 +141,8 @@ int DynamicsSystem::setup() {
   FactorizationStatus status;
   try {
     const Eigen::SparseMatrix<double>& H = evaluator_.objective().hessian();
-    const bool stiffness = from_.stiffness_coefficient > 0.0 ||
-                           (blending_ && to_.stiffness_coefficient > 0.0);
+    const bool stiffness =
+        from_.stiffness_coefficient > 0.0 || (blending_ && to_.stiffness_coefficient > 0.0);
     if (stiffness) {
       // K = H + c_j (stiffness part of C) + shift M.
       if (same_pattern(work_, H))

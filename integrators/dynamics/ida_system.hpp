@@ -29,15 +29,14 @@
 // shorter step, which is the physically right reaction near a saddle.
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <functional>
 #include <utility>
 
-#include <Eigen/Core>
-#include <Eigen/SparseCore>
-
+#include "integrators/common/objective_evaluator.hpp"
 #include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/linear_algebra/sundials_linear_solver.hpp"
-#include "integrators/common/objective_evaluator.hpp"
 
 namespace xshell {
 
@@ -116,7 +115,9 @@ class DynamicsSystem final : public DirectSolveBackend {
   // Called from setup() with the c_j of a K that was not positive definite
   // (before IDA picks its next step, so that a step cap set there applies
   // to it). Must not throw.
-  void on_indefinite(std::function<void(double cj)> handler) { on_indefinite_ = std::move(handler); }
+  void on_indefinite(std::function<void(double cj)> handler) {
+    on_indefinite_ = std::move(handler);
+  }
 
  private:
   double weight(double t) const;  // w of the blend at t (0 without one)
@@ -130,7 +131,7 @@ class DynamicsSystem final : public DirectSolveBackend {
   Damping from_, to_;
   bool blending_ = false;
   double blend_start_ = 0.0, blend_end_ = 0.0;
-  double cj_ = 0.0, jacobian_t_ = 0.0;  // of the last Jacobian call
+  double cj_ = 0.0, jacobian_t_ = 0.0;     // of the last Jacobian call
   double setup_cj_ = 0.0, setup_t_ = 0.0;  // of the factorization in cholesky_
   Eigen::SparseMatrix<double> work_;       // H + c_j (stiffness part of C)
   CholeskySolver cholesky_;

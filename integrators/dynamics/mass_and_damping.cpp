@@ -135,7 +135,8 @@ ModeEstimate estimate_modes(CholeskySolver& solver, const Eigen::SparseMatrix<do
   }
   found.push_back(mode.vector);
   estimate.unstable_modes = 1;
-  const Eigen::VectorXd* start = warm != nullptr && warm->stable.ok ? &warm->stable.vector : nullptr;
+  const Eigen::VectorXd* start =
+      warm != nullptr && warm->stable.ok ? &warm->stable.vector : nullptr;
   for (int k = 1; k <= max_unstable; ++k) {
     LowestMode next;
     next.shifted = true;

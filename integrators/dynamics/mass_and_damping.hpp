@@ -47,8 +47,8 @@ LowestMode estimate_lowest_mode(CholeskySolver& solver, const Eigen::SparseMatri
 // them). `warm`: a previous estimate whose vectors start the iterations.
 struct ModeEstimate {
   LowestMode lowest;
-  LowestMode stable;      // == lowest when that is stable; ok = false if not found
-  int unstable_modes = 0;  // negative eigenvalues found
+  LowestMode stable;             // == lowest when that is stable; ok = false if not found
+  int unstable_modes = 0;        // negative eigenvalues found
   double certified_shift = 0.0;  // s with H + s M positive definite (0 if H is)
 };
 // Modes with eigenvalues at or below zero_floor (zero modes, such as the

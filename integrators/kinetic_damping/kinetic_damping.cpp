@@ -5,11 +5,11 @@
 #include <limits>
 #include <stdexcept>
 
-#include "integrators/linear_algebra/cholesky_solver.hpp"
-#include "integrators/dynamics/mass_and_damping.hpp"
 #include "integrators/common/objective_evaluator.hpp"
-#include "integrators/linear_algebra/shifted_factorization.hpp"
 #include "integrators/common/wall_clock.hpp"
+#include "integrators/dynamics/mass_and_damping.hpp"
+#include "integrators/linear_algebra/cholesky_solver.hpp"
+#include "integrators/linear_algebra/shifted_factorization.hpp"
 
 namespace xshell {
 

@@ -16,8 +16,8 @@
 
 #include <Eigen/Core>
 
-#include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/common/objective_evaluator.hpp"
+#include "integrators/linear_algebra/cholesky_solver.hpp"
 
 namespace xshell {
 

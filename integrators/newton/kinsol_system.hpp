@@ -16,10 +16,10 @@
 
 #include <Eigen/Core>
 
-#include "integrators/linear_algebra/cholesky_solver.hpp"
-#include "integrators/linear_algebra/sundials_linear_solver.hpp"
 #include "integrators/common/objective_evaluator.hpp"
+#include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/linear_algebra/shifted_factorization.hpp"
+#include "integrators/linear_algebra/sundials_linear_solver.hpp"
 
 namespace xshell {
 

@@ -8,11 +8,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "integrators/common/objective_evaluator.hpp"
+#include "integrators/common/wall_clock.hpp"
+#include "integrators/linear_algebra/sundials_handles.hpp"
 #include "integrators/newton/descent_step.hpp"
 #include "integrators/newton/kinsol_system.hpp"
-#include "integrators/common/objective_evaluator.hpp"
-#include "integrators/linear_algebra/sundials_handles.hpp"
-#include "integrators/common/wall_clock.hpp"
 
 namespace xshell {
 
@@ -278,8 +278,8 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
       s.evaluator.sync();
       report.energy = result.energy;
       result.status = NewtonStatus::NonFinite;
-      result.reason = "the energy is not finite after the step of iteration " + std::to_string(iteration + 1) +
-                      "; the state before it is kept";
+      result.reason = "the energy is not finite after the step of iteration " +
+                      std::to_string(iteration + 1) + "; the state before it is kept";
       break;
     }
     report.step_norm = (q - q0).lpNorm<Eigen::Infinity>();

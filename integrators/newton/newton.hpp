@@ -32,8 +32,8 @@
 #include <memory>
 #include <string>
 
-#include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/common/objective.hpp"
+#include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/linear_algebra/shifted_factorization.hpp"
 
 namespace xshell {
@@ -93,12 +93,12 @@ struct NewtonReport {
   int iteration = 0;    // iterations done
   double energy = 0.0;  // after the iteration
   double gradient_measure = 0.0;
-  double step_norm = 0.0;           // max_i |dq_i| of the step taken (unknowns before the next rebase)
-  long factorizations = 0;          // numeric Cholesky factorizations in this iteration
-  bool shifted = false;             // the Hessian was indefinite and had to be shifted
-  bool energy_line_search = false;  // the step was globalized on the energy (not by KINSOL)
-  double shift = 0.0;               // coefficient of M in the shift (0 if none)
-  double seconds = 0.0;             // wall time of the iteration
+  double step_norm = 0.0;   // max_i |dq_i| of the step taken (unknowns before the next rebase)
+  long factorizations = 0;  // numeric Cholesky factorizations in this iteration
+  bool shifted = false;     // the Hessian was indefinite and had to be shifted
+  bool energy_line_search = false;     // the step was globalized on the energy (not by KINSOL)
+  double shift = 0.0;                  // coefficient of M in the shift (0 if none)
+  double seconds = 0.0;                // wall time of the iteration
   double hessian_seconds = 0.0;        // of which Hessian assembly
   double factorization_seconds = 0.0;  // and numeric factorizations (shifted retries included)
 };

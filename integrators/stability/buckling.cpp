@@ -1,8 +1,8 @@
 #include "integrators/stability/buckling.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Spectra/SymGEigsSolver.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 
 #include "integrators/linear_algebra/cholesky_solver.hpp"
@@ -32,7 +32,8 @@ class SparseProduct {
 class FactorizedMatrix {
  public:
   using Scalar = double;
-  FactorizedMatrix(const Eigen::SparseMatrix<double>& B, CholeskySolver& solver) : B_(B), solver_(solver) {}
+  FactorizedMatrix(const Eigen::SparseMatrix<double>& B, CholeskySolver& solver)
+      : B_(B), solver_(solver) {}
   Eigen::Index rows() const { return B_.rows(); }
   Eigen::Index cols() const { return B_.cols(); }
   void perform_op(const double* x_in, double* y_out) const {
@@ -49,7 +50,8 @@ class FactorizedMatrix {
 
 }  // namespace
 
-BucklingResult linearized_buckling(const Eigen::SparseMatrix<double>& K0, const Eigen::SparseMatrix<double>& KL,
+BucklingResult linearized_buckling(const Eigen::SparseMatrix<double>& K0,
+                                   const Eigen::SparseMatrix<double>& KL,
                                    const BucklingOptions& options) {
   BucklingResult out;
   const int n = static_cast<int>(K0.rows());
@@ -72,7 +74,8 @@ BucklingResult linearized_buckling(const Eigen::SparseMatrix<double>& K0, const 
     SparseProduct a(softening);
     FactorizedMatrix b(K0, solver);
     const int ncv = std::min(n, 20);
-    Spectra::SymGEigsSolver<SparseProduct, FactorizedMatrix, Spectra::GEigsMode::RegularInverse> eigs(a, b, 1, ncv);
+    Spectra::SymGEigsSolver<SparseProduct, FactorizedMatrix, Spectra::GEigsMode::RegularInverse>
+        eigs(a, b, 1, ncv);
     eigs.init();
     eigs.compute(Spectra::SortRule::LargestAlge, options.max_restarts, options.tolerance);
     if (eigs.info() != Spectra::CompInfo::Successful) return out;
@@ -91,10 +94,14 @@ BucklingResult linearized_buckling(const Eigen::SparseMatrix<double>& K0, const 
 
 const char* buckling_status_name(BucklingStatus status) {
   switch (status) {
-    case BucklingStatus::Found: return "found";
-    case BucklingStatus::NoBuckling: return "no_buckling";
-    case BucklingStatus::UnloadedUnstable: return "unloaded_unstable";
-    case BucklingStatus::NotConverged: return "not_converged";
+    case BucklingStatus::Found:
+      return "found";
+    case BucklingStatus::NoBuckling:
+      return "no_buckling";
+    case BucklingStatus::UnloadedUnstable:
+      return "unloaded_unstable";
+    case BucklingStatus::NotConverged:
+      return "not_converged";
   }
   return "unknown";
 }

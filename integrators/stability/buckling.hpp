@@ -46,7 +46,8 @@ struct BucklingResult {
 };
 
 // K0, KL: n x n symmetric (both triangles), the same free unknowns.
-BucklingResult linearized_buckling(const Eigen::SparseMatrix<double>& K0, const Eigen::SparseMatrix<double>& KL,
+BucklingResult linearized_buckling(const Eigen::SparseMatrix<double>& K0,
+                                   const Eigen::SparseMatrix<double>& KL,
                                    const BucklingOptions& options = {});
 
 const char* buckling_status_name(BucklingStatus status);

@@ -1,8 +1,8 @@
 #include "integrators/stability/eigen_modes.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Spectra/SymEigsShiftSolver.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -17,7 +17,8 @@ namespace {
 class MassWeightedShiftSolve {
  public:
   using Scalar = double;
-  MassWeightedShiftSolve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass, CholeskySolver& solver)
+  MassWeightedShiftSolve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
+                         CholeskySolver& solver)
       : H_(H), mass_(mass), root_(mass.cwiseSqrt()), solver_(solver) {}
   Eigen::Index rows() const { return H_.rows(); }
   Eigen::Index cols() const { return H_.cols(); }
@@ -46,7 +47,8 @@ class MassWeightedShiftSolve {
   double factorized_shift_ = std::nan("");
 };
 
-EigenModes dense_modes(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass, int count) {
+EigenModes dense_modes(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
+                       int count) {
   const Eigen::VectorXd inv_root = mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd A = inv_root.asDiagonal() * Eigen::MatrixXd(H) * inv_root.asDiagonal();
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(0.5 * (A + A.transpose()));

@@ -25,17 +25,17 @@
 namespace xshell {
 
 struct EigenModesOptions {
-  int count = 6;               // eigenpairs wanted (fewer when n is smaller)
-  double tolerance = 1e-10;    // Spectra's relative tolerance on the Ritz values
-  int max_restarts = 1000;     // Lanczos restarts
+  int count = 6;             // eigenpairs wanted (fewer when n is smaller)
+  double tolerance = 1e-10;  // Spectra's relative tolerance on the Ritz values
+  int max_restarts = 1000;   // Lanczos restarts
 };
 
 struct EigenModes {
   bool converged = false;
-  std::string reason;          // why not, when not
-  Eigen::VectorXd values;      // ascending, size k
-  Eigen::MatrixXd vectors;     // n x k, M-orthonormal columns
-  double shift = 0.0;          // sigma used
+  std::string reason;       // why not, when not
+  Eigen::VectorXd values;   // ascending, size k
+  Eigen::MatrixXd vectors;  // n x k, M-orthonormal columns
+  double shift = 0.0;       // sigma used
 };
 
 // H: n x n symmetric (both triangles stored); mass: n, positive.

@@ -9,17 +9,17 @@
 #include <string>
 #include <vector>
 
+#include "integrators/newton/newton.hpp"
 #include "integrators/stability/buckling.hpp"
 #include "integrators/stability/eigen_modes.hpp"
 #include "linkage/statics_problem.hpp"
-#include "integrators/newton/newton.hpp"
 
 namespace xshell {
 
 struct StabilityOptions {
-  EigenModesOptions modes;          // how many eigenpairs (default 6)
-  bool buckling = true;             // also the buckling load factor (one more Newton solve)
-  NewtonOptions unloaded_newton;    // for the unloaded equilibrium
+  EigenModesOptions modes;        // how many eigenpairs (default 6)
+  bool buckling = true;           // also the buckling load factor (one more Newton solve)
+  NewtonOptions unloaded_newton;  // for the unloaded equilibrium
 };
 
 struct StabilityAnalysis {
@@ -27,7 +27,7 @@ struct StabilityAnalysis {
   bool loaded = false;              // some load acts (else no buckling analysis)
   bool unloaded_converged = false;  // the unloaded equilibrium was found
   std::string unloaded_reason;
-  BucklingResult buckling;          // status UnloadedUnstable also when not converged
+  BucklingResult buckling;  // status UnloadedUnstable also when not converged
 };
 
 // problem: at its (loaded) equilibrium; its Hessian is reassembled.

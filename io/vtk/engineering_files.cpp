@@ -48,15 +48,17 @@ void write_stresses_file(const EngineeringSnapshot& snapshot, const std::filesys
     lines->InsertCellPoint(points->InsertNextPoint(e.b.x(), e.b.y(), e.b.z()));
     rod_ids.push_back(e.rod_id);
     segment_ids.push_back(e.segment_id);
-    const double values[12] = {e.axial_force,     e.bending_moment1, e.bending_moment2,  e.torque,
-                               e.axial_stress,    e.bending_stress1, e.bending_stress2,  e.torsional_shear,
-                               e.max_normal_stress, e.equivalent_stress, e.utilisation, 0.0};
+    const double values[12] = {
+        e.axial_force,       e.bending_moment1,   e.bending_moment2, e.torque,
+        e.axial_stress,      e.bending_stress1,   e.bending_stress2, e.torsional_shear,
+        e.max_normal_stress, e.equivalent_stress, e.utilisation,     0.0};
     for (int k = 0; k < 11; ++k) columns[k].push_back(values[k]);
     any_utilisation = any_utilisation || e.utilisation >= 0.0;
   }
-  static const char* names[11] = {"axial_force",     "bending_moment1",  "bending_moment2",  "torque",
-                                  "axial_stress",    "bending_stress1",  "bending_stress2",  "torsional_shear",
-                                  "max_normal_stress", "equivalent_stress", "utilisation"};
+  static const char* names[11] = {
+      "axial_force",       "bending_moment1",   "bending_moment2", "torque",
+      "axial_stress",      "bending_stress1",   "bending_stress2", "torsional_shear",
+      "max_normal_stress", "equivalent_stress", "utilisation"};
   vtkNew<vtkPolyData> data;
   data->SetPoints(points);
   data->SetLines(lines);
@@ -76,19 +78,23 @@ void write_modes_file(const EngineeringSnapshot& snapshot, const std::filesystem
   vtkNew<vtkCellArray> lines;
   for (const auto& nodes : snapshot.segment_nodes) {
     lines->InsertNextCell(static_cast<vtkIdType>(nodes.size()));
-    for (const Eigen::Vector3d& x : nodes) lines->InsertCellPoint(points->InsertNextPoint(x.x(), x.y(), x.z()));
+    for (const Eigen::Vector3d& x : nodes)
+      lines->InsertCellPoint(points->InsertNextPoint(x.x(), x.y(), x.z()));
   }
   vtkNew<vtkPolyData> data;
   data->SetPoints(points);
   data->SetLines(lines);
   for (const ModeField& mode : snapshot.modes) {
     std::vector<Eigen::Vector3d> flat;
-    for (const auto& segment : mode.displacement) flat.insert(flat.end(), segment.begin(), segment.end());
+    for (const auto& segment : mode.displacement)
+      flat.insert(flat.end(), segment.begin(), segment.end());
     if (static_cast<vtkIdType>(flat.size()) != points->GetNumberOfPoints())
-      throw std::invalid_argument("modes file: mode " + mode.name + " does not match the rod nodes");
+      throw std::invalid_argument("modes file: mode " + mode.name +
+                                  " does not match the rod nodes");
     data->GetPointData()->AddArray(vector_array(mode.name, flat));
   }
-  if (!snapshot.modes.empty()) data->GetPointData()->SetActiveVectors(snapshot.modes.front().name.c_str());
+  if (!snapshot.modes.empty())
+    data->GetPointData()->SetActiveVectors(snapshot.modes.front().name.c_str());
   write_polydata(*data, path, options);
 }
 

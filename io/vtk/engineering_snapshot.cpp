@@ -4,7 +4,8 @@
 
 namespace xshell {
 
-EngineeringSnapshot engineering_snapshot(const RodLinkage& linkage, const EngineeringResults& results,
+EngineeringSnapshot engineering_snapshot(const RodLinkage& linkage,
+                                         const EngineeringResults& results,
                                          const Eigen::Vector3d& origin) {
   EngineeringSnapshot out;
   for (const SupportReaction& r : results.reactions)

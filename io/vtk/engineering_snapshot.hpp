@@ -34,19 +34,20 @@ struct EdgeResult {
 
 // A displacement field on every rod node (one polyline per segment).
 struct ModeField {
-  std::string name;                          // point-data array name, e.g. "mode_0"
+  std::string name;                                        // point-data array name, e.g. "mode_0"
   std::vector<std::vector<Eigen::Vector3d>> displacement;  // [segment][node]
 };
 
 struct EngineeringSnapshot {
   std::vector<ReactionGlyph> reactions;
   std::vector<EdgeResult> edges;
-  Snapshot joints;  // joints only, with pin forces
+  Snapshot joints;                                          // joints only, with pin forces
   std::vector<std::vector<Eigen::Vector3d>> segment_nodes;  // [segment][node], for the modes
   std::vector<ModeField> modes;
 };
 
-EngineeringSnapshot engineering_snapshot(const RodLinkage& linkage, const EngineeringResults& results,
+EngineeringSnapshot engineering_snapshot(const RodLinkage& linkage,
+                                         const EngineeringResults& results,
                                          const Eigen::Vector3d& origin);
 
 }  // namespace xshell

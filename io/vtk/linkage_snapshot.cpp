@@ -37,7 +37,9 @@ SegmentSample sample(const ElasticRod& rod) {
 }
 
 template <class T>
-void reverse_all(std::vector<T>& v) { std::reverse(v.begin(), v.end()); }
+void reverse_all(std::vector<T>& v) {
+  std::reverse(v.begin(), v.end());
+}
 }  // namespace
 
 Snapshot linkage_snapshot(const RodLinkage& linkage, const Eigen::Vector3d& origin, double time) {
@@ -47,11 +49,13 @@ Snapshot linkage_snapshot(const RodLinkage& linkage, const Eigen::Vector3d& orig
   for (size_t r = 0; r < rods.size(); ++r) {
     // The rod's section: that of its first segment (sections are set per
     // full rod by the configuration's "rods").
-    const Material& material =
-        rods[r].segments.empty() ? linkage.options().material : linkage.segment_material(rods[r].segments[0]);
+    const Material& material = rods[r].segments.empty()
+                                   ? linkage.options().material
+                                   : linkage.segment_material(rods[r].segments[0]);
     SectionSnapshot section;
-    section.shape = material.section.shape == SectionShape::Rectangle ? SectionSnapshot::Shape::Rectangle
-                                                                      : SectionSnapshot::Shape::Ellipse;
+    section.shape = material.section.shape == SectionShape::Rectangle
+                        ? SectionSnapshot::Shape::Rectangle
+                        : SectionSnapshot::Shape::Ellipse;
     section.width = material.section.width;
     section.height = material.section.height;
     RodSnapshot out;
@@ -62,7 +66,8 @@ Snapshot linkage_snapshot(const RodLinkage& linkage, const Eigen::Vector3d& orig
       SegmentSample s = sample(linkage.segment(seg));
       if (!rods[r].forward[k]) {
         for (auto* v : {&s.nodes, &s.d1, &s.d2}) reverse_all(*v);
-        for (auto* v : {&s.stretching, &s.curvature, &s.twist, &s.bending, &s.twisting}) reverse_all(*v);
+        for (auto* v : {&s.stretching, &s.curvature, &s.twist, &s.bending, &s.twisting})
+          reverse_all(*v);
         // Twist (the rotation of d1 about t per length) is the same read in
         // either direction: both t and the arc length change sign.
       }

@@ -12,8 +12,8 @@ void validate(const Snapshot& snapshot) {
     auto check = [&](size_t size, size_t expected, const char* what) {
       if (size != expected)
         throw std::invalid_argument(std::string("snapshot: rod ") + std::to_string(rod.rod_id) +
-                                    " has " + std::to_string(size) + " " + what + " entries, expected " +
-                                    std::to_string(expected));
+                                    " has " + std::to_string(size) + " " + what +
+                                    " entries, expected " + std::to_string(expected));
     };
     check(rod.edge_segment.size(), n_edges, "edge_segment");
     check(rod.d1.size(), n_edges, "d1");

@@ -24,22 +24,22 @@ struct RodSnapshot {
   std::vector<Eigen::Vector3d> nodes;  // n + 1 points, in order along the rod
 
   // Per edge (n entries; edge i joins nodes i and i + 1).
-  std::vector<int> edge_segment;          // graph edge (segment) index, 0-based
-  std::vector<Eigen::Vector3d> d1, d2;    // material frame, unit, orthogonal to the edge
-  std::vector<double> stretching_density; // stretching energy per unit length
+  std::vector<int> edge_segment;           // graph edge (segment) index, 0-based
+  std::vector<Eigen::Vector3d> d1, d2;     // material frame, unit, orthogonal to the edge
+  std::vector<double> stretching_density;  // stretching energy per unit length
 
   // Per node (n + 1 entries; 0 at the two ends).
-  std::vector<double> curvature;          // |curvature binormal| / Voronoi length (1/length)
-  std::vector<double> twist;              // material twist / Voronoi length (rad/length)
-  std::vector<double> bending_density;    // bending energy per unit length
-  std::vector<double> twisting_density;   // twisting energy per unit length
+  std::vector<double> curvature;         // |curvature binormal| / Voronoi length (1/length)
+  std::vector<double> twist;             // material twist / Voronoi length (rad/length)
+  std::vector<double> bending_density;   // bending energy per unit length
+  std::vector<double> twisting_density;  // twisting energy per unit length
 };
 
 struct JointSnapshot {
-  int vertex = 0;                 // graph vertex index, 0-based
+  int vertex = 0;  // graph vertex index, 0-based
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit; equals d2 of its terminal edges
-  double opening_angle = 0.0;     // radians, in (0, pi)
+  double opening_angle = 0.0;                         // radians, in (0, pi)
   int valence = 0;
   // Force the pin applies to rod A and to rod B (joint_forces.hpp), when
   // computed (final state); written only when every joint has them.

@@ -5,10 +5,10 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "io/atomic_file.hpp"
 #include "frames_file.hpp"
-#include "joints_file.hpp"
+#include "io/atomic_file.hpp"
 #include "io/output_error.hpp"
+#include "joints_file.hpp"
 #include "rods_file.hpp"
 
 namespace xshell {

@@ -51,7 +51,8 @@ class AffineLoop {
       threads_ = threads;
     }
     for (int t = 0; t < threads; ++t) {
-      cursors_[t].next.store(static_cast<int>(static_cast<long>(count) * t / threads), std::memory_order_relaxed);
+      cursors_[t].next.store(static_cast<int>(static_cast<long>(count) * t / threads),
+                             std::memory_order_relaxed);
       cursors_[t].end = static_cast<int>(static_cast<long>(count) * (t + 1) / threads);
     }
   }

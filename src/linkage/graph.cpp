@@ -16,8 +16,8 @@ std::vector<int> valences(const LineGraph& graph) {
 std::vector<int> corner_vertices(const LineGraph& graph) {
   std::vector<int> corners;
   if (graph.vertices.empty()) return corners;
-  for (const Eigen::Vector2d& d : {Eigen::Vector2d(1, 1), Eigen::Vector2d(1, -1), Eigen::Vector2d(-1, 1),
-                                   Eigen::Vector2d(-1, -1)}) {
+  for (const Eigen::Vector2d& d : {Eigen::Vector2d(1, 1), Eigen::Vector2d(1, -1),
+                                   Eigen::Vector2d(-1, 1), Eigen::Vector2d(-1, -1)}) {
     int best = 0;
     for (int v = 1; v < static_cast<int>(graph.vertices.size()); ++v)
       if (d.dot(graph.vertices[v].head<2>()) > d.dot(graph.vertices[best].head<2>())) best = v;

@@ -6,7 +6,8 @@
 namespace xshell {
 
 bool nearly_parallel(const Eigen::Vector3d& e_a, const Eigen::Vector3d& e_b) {
-  return e_a.cross(e_b).norm() < std::sin(kMinEdgeVectorAngleDegrees * M_PI / 180.0) * e_a.norm() * e_b.norm();
+  return e_a.cross(e_b).norm() <
+         std::sin(kMinEdgeVectorAngleDegrees * M_PI / 180.0) * e_a.norm() * e_b.norm();
 }
 
 Joint::Joint(const Eigen::Vector3d& p, const Eigen::Vector3d& t_a, const Eigen::Vector3d& t_b,
@@ -36,7 +37,8 @@ Joint::Joint(const Eigen::Vector3d& p, const Eigen::Vector3d& t_a, const Eigen::
 std::string Joint::check_params(const JointParams& params) const {
   if (!params.allFinite()) return "non-finite parameters";
   if (kind_ == JointKind::Rotation) {
-    if (!(params[kLengthA] > 0.0 && params[kLengthB] > 0.0)) return "terminal edge length must stay positive";
+    if (!(params[kLengthA] > 0.0 && params[kLengthB] > 0.0))
+      return "terminal edge length must stay positive";
     return {};
   }
   const Eigen::Vector3d e_a = edge_basis(0) * params.segment<3>(kEdgeA);
@@ -62,7 +64,8 @@ double Joint::opening_angle() const {
 }
 
 Eigen::Vector3d Joint::normal() const {
-  if (kind_ == JointKind::Rotation) return rotation_matrix(params_.segment<3>(kOmega)) * frame_.col(2);
+  if (kind_ == JointKind::Rotation)
+    return rotation_matrix(params_.segment<3>(kOmega)) * frame_.col(2);
   V3<double> e_a, e_b, n;
   geometry(params_.data(), e_a, e_b, n);
   return n.values();
@@ -97,13 +100,15 @@ TerminalEdge<double> Joint::terminal_edge(int label, int sign, const SourceFrame
   return terminal_edge<double>(params_.data(), label, sign, source, theta_hint);
 }
 
-void Joint::terminal_edge_derivatives(int label, int sign, const SourceFrame& source, double theta_hint,
-                                      Eigen::Matrix<double, 7, 9>& jacobian, JointHessian hessians[7]) const {
+void Joint::terminal_edge_derivatives(int label, int sign, const SourceFrame& source,
+                                      double theta_hint, Eigen::Matrix<double, 7, 9>& jacobian,
+                                      JointHessian hessians[7]) const {
   using D = Dual<9>;
   std::array<D, 9> q;
   for (int i = 0; i < 9; ++i) q[i] = D::variable(i, params_[i]);
   const TerminalEdge<D> t = terminal_edge<D>(q.data(), label, sign, source, theta_hint);
-  const D* out[7] = {&t.first.x, &t.first.y, &t.first.z, &t.second.x, &t.second.y, &t.second.z, &t.theta};
+  const D* out[7] = {&t.first.x,  &t.first.y,  &t.first.z, &t.second.x,
+                     &t.second.y, &t.second.z, &t.theta};
   for (int k = 0; k < 7; ++k) {
     jacobian.row(k) = out[k]->g.transpose();
     hessians[k] = out[k]->h;

@@ -123,9 +123,11 @@ class Joint {
 
   // The terminal edge at the current parameters, and its exact first and
   // second derivatives: jacobian (7 x 9) and one 9 x 9 Hessian per value.
-  TerminalEdge<double> terminal_edge(int label, int sign, const SourceFrame& source, double theta_hint) const;
+  TerminalEdge<double> terminal_edge(int label, int sign, const SourceFrame& source,
+                                     double theta_hint) const;
   void terminal_edge_derivatives(int label, int sign, const SourceFrame& source, double theta_hint,
-                                 Eigen::Matrix<double, 7, 9>& jacobian, JointHessian hessians[7]) const;
+                                 Eigen::Matrix<double, 7, 9>& jacobian,
+                                 JointHessian hessians[7]) const;
 
   // Edge-vector joints: the basis B_X (columns as above) of rod `label`.
   Eigen::Matrix3d edge_basis(int label) const;

@@ -9,13 +9,15 @@
 
 namespace xshell {
 
-XSHELL_FLATTEN void terminal_edge_jacobian(const Joint& joint, int label, int sign, const SourceFrame& source,
-                            double theta_hint, Eigen::Matrix<double, 7, 9>& jacobian) {
+XSHELL_FLATTEN void terminal_edge_jacobian(const Joint& joint, int label, int sign,
+                                           const SourceFrame& source, double theta_hint,
+                                           Eigen::Matrix<double, 7, 9>& jacobian) {
   using D = Dual1<9>;
   D q[9];
   for (int i = 0; i < 9; ++i) q[i] = D::variable(i, joint.params()[i]);
   const TerminalEdge<D> t = joint.terminal_edge<D>(q, label, sign, source, theta_hint);
-  const D* out[7] = {&t.first.x, &t.first.y, &t.first.z, &t.second.x, &t.second.y, &t.second.z, &t.theta};
+  const D* out[7] = {&t.first.x,  &t.first.y,  &t.first.z, &t.second.x,
+                     &t.second.y, &t.second.z, &t.theta};
   for (int k = 0; k < 7; ++k) jacobian.row(k) = out[k]->g.transpose();
 }
 
@@ -33,7 +35,8 @@ std::array<D, 9> joint_geometry_duals(const Joint& joint) {
 }
 }  // namespace
 
-XSHELL_FLATTEN void joint_geometry_derivatives_by_ad(const Joint& joint, JointGeometryDerivatives& out) {
+XSHELL_FLATTEN void joint_geometry_derivatives_by_ad(const Joint& joint,
+                                                     JointGeometryDerivatives& out) {
   const std::array<Dual<6>, 9> v = joint_geometry_duals<Dual<6>>(joint);
   for (int k = 0; k < 9; ++k) {
     out.value[k] = v[k].v;
@@ -48,10 +51,12 @@ namespace {
 // so R(w) b1, R(w) b2, R(w) n0 by second-order AD over w alone (Dual<3>)
 // give everything; the alpha and length derivatives are written out.
 // Local parameter order: w (0-2), alpha (3), l_A (4), l_B (5).
-XSHELL_FLATTEN void rotation_joint_geometry_derivatives(const Joint& joint, JointGeometryDerivatives& out) {
+XSHELL_FLATTEN void rotation_joint_geometry_derivatives(const Joint& joint,
+                                                        JointGeometryDerivatives& out) {
   using D = Dual<3>;
   const JointParams& q = joint.params();
-  const V3<D> w(D::variable(0, q[kOmega]), D::variable(1, q[kOmega + 1]), D::variable(2, q[kOmega + 2]));
+  const V3<D> w(D::variable(0, q[kOmega]), D::variable(1, q[kOmega + 1]),
+                D::variable(2, q[kOmega + 2]));
   const Eigen::Matrix3d& frame = joint.reference_frame();
   V3<D> rotated[3];
   for (int k = 0; k < 3; ++k) rotated[k] = rotate(w, lift<D>(frame.col(k)));
@@ -64,7 +69,8 @@ XSHELL_FLATTEN void rotation_joint_geometry_derivatives(const Joint& joint, Join
     const double l = q[kLengthA + label];
     const int li = 4 + label;  // local index of l_X
     // u = a r1 + b r2 and its alpha derivatives.
-    const double a = c, b = sign * s, da = -0.5 * s, db = 0.5 * sign * c, dda = -0.25 * c, ddb = -0.25 * sign * s;
+    const double a = c, b = sign * s, da = -0.5 * s, db = 0.5 * sign * c, dda = -0.25 * c,
+                 ddb = -0.25 * sign * s;
     for (int k = 0; k < 3; ++k) {
       const D& p = *r1[k];
       const D& m = *r2[k];
@@ -118,7 +124,8 @@ XSHELL_FLATTEN void joint_geometry_jacobian(const Joint& joint, JointGeometryDer
 namespace {
 // dtheta/de and dtheta/dn of a terminal edge's theta (see the header).
 template <class T>
-void theta_gradient(const V3<T>& e, const V3<T>& n, const SourceFrame& source, V3<T>& ge, V3<T>& gn) {
+void theta_gradient(const V3<T>& e, const V3<T>& n, const SourceFrame& source, V3<T>& ge,
+                    V3<T>& gn) {
   const T l = norm(e);
   const V3<T> t = e * (1.0 / l);
   Frame<T> ref;
@@ -147,7 +154,8 @@ void node_jacobian(const JointGeometryDerivatives& geometry, int e0, double s,
 }
 
 // d u / d params[3..8] for u = (s e_X, n).
-Eigen::Matrix<double, 6, 6> edge_and_normal_jacobian(const JointGeometryDerivatives& geometry, int e0, double s) {
+Eigen::Matrix<double, 6, 6> edge_and_normal_jacobian(const JointGeometryDerivatives& geometry,
+                                                     int e0, double s) {
   Eigen::Matrix<double, 6, 6> ju;
   for (int c = 0; c < 3; ++c) {
     ju.row(c) = s * geometry.jacobian.row(e0 + c);
@@ -158,12 +166,14 @@ Eigen::Matrix<double, 6, 6> edge_and_normal_jacobian(const JointGeometryDerivati
 
 }  // namespace
 
-XSHELL_FLATTEN void terminal_edge_jacobian(const JointGeometryDerivatives& geometry, int label, int sign,
-                            const SourceFrame& source, Eigen::Matrix<double, 7, 9>& jacobian) {
+XSHELL_FLATTEN void terminal_edge_jacobian(const JointGeometryDerivatives& geometry, int label,
+                                           int sign, const SourceFrame& source,
+                                           Eigen::Matrix<double, 7, 9>& jacobian) {
   const double s = static_cast<double>(sign);
   const int e0 = 3 * label;
   node_jacobian(geometry, e0, s, jacobian);
-  const V3<double> e(s * geometry.value[e0], s * geometry.value[e0 + 1], s * geometry.value[e0 + 2]);
+  const V3<double> e(s * geometry.value[e0], s * geometry.value[e0 + 1],
+                     s * geometry.value[e0 + 2]);
   const V3<double> n(geometry.value[6], geometry.value[7], geometry.value[8]);
   V3<double> ge, gn;
   theta_gradient(e, n, source, ge, gn);
@@ -171,8 +181,9 @@ XSHELL_FLATTEN void terminal_edge_jacobian(const JointGeometryDerivatives& geome
   jacobian.block<1, 6>(6, 3) = g.transpose() * edge_and_normal_jacobian(geometry, e0, s);
 }
 
-XSHELL_FLATTEN void terminal_edge_derivatives(const JointGeometryDerivatives& geometry, int label, int sign,
-                               const SourceFrame& source, TerminalEdgeDerivatives& out) {
+XSHELL_FLATTEN void terminal_edge_derivatives(const JointGeometryDerivatives& geometry, int label,
+                                              int sign, const SourceFrame& source,
+                                              TerminalEdgeDerivatives& out) {
   const double s = static_cast<double>(sign);
   const int e0 = 3 * label;  // rows of e_X in the geometry
   node_jacobian(geometry, e0, s, out.jacobian);
@@ -185,7 +196,8 @@ XSHELL_FLATTEN void terminal_edge_derivatives(const JointGeometryDerivatives& ge
   using D = Dual1<6>;
   const V3<D> e(D::variable(0, s * geometry.value[e0]), D::variable(1, s * geometry.value[e0 + 1]),
                 D::variable(2, s * geometry.value[e0 + 2]));
-  const V3<D> n(D::variable(3, geometry.value[6]), D::variable(4, geometry.value[7]), D::variable(5, geometry.value[8]));
+  const V3<D> n(D::variable(3, geometry.value[6]), D::variable(4, geometry.value[7]),
+                D::variable(5, geometry.value[8]));
   V3<D> ge, gn;
   theta_gradient(e, n, source, ge, gn);
   const D* gu[6] = {&ge.x, &ge.y, &ge.z, &gn.x, &gn.y, &gn.z};

@@ -22,8 +22,8 @@ void terminal_edge_jacobian(const Joint& joint, int label, int sign, const Sourc
 // forward AD of Joint::geometry over those 6, once per joint.
 struct JointGeometryDerivatives {
   Eigen::Matrix<double, 9, 1> value;
-  Eigen::Matrix<double, 9, 6> jacobian;       // row k: d v_k / d params[3..8]
-  Eigen::Matrix<double, 6, 6> hessians[9];    // d2 v_k / d params[3..8]^2
+  Eigen::Matrix<double, 9, 6> jacobian;     // row k: d v_k / d params[3..8]
+  Eigen::Matrix<double, 6, 6> hessians[9];  // d2 v_k / d params[3..8]^2
 };
 // Rotation joints take a shorter road (AD over the rotation vector alone,
 // the rest by hand); edge-vector joints, and the test of that road, take

@@ -30,15 +30,16 @@ std::vector<JointForce> joint_forces(const LinkageProblem& problem) {
         Eigen::Matrix<double, 7, 1> g_terminal;
         g_terminal << g.segment<3>(3 * edge), g.segment<3>(3 * (edge + 1)), g[rod.theta_dof(edge)];
         Eigen::Matrix<double, 7, 9> jacobian;
-        terminal_edge_jacobian(joint, seg.label[side], seg.sign[side], rod.source_frames()[edge], rod.thetas()[edge],
-                               jacobian);
+        terminal_edge_jacobian(joint, seg.label[side], seg.sign[side], rod.source_frames()[edge],
+                               rod.thetas()[edge], jacobian);
         const Eigen::Matrix<double, 9, 1> g_joint = jacobian.transpose() * g_terminal;
         f.force_on[x] += g_joint.segment<3>(kPosition);
         g_omega[x] += g_joint.segment<3>(kOmega);
       }
     if (joint.kind() == JointKind::Rotation) {
       const Eigen::Matrix3d jl_t = left_jacobian(joint.params().segment<3>(kOmega)).transpose();
-      f.moment_on = std::array<Eigen::Vector3d, 2>{{jl_t.lu().solve(g_omega[0]), jl_t.lu().solve(g_omega[1])}};
+      f.moment_on = std::array<Eigen::Vector3d, 2>{
+          {jl_t.lu().solve(g_omega[0]), jl_t.lu().solve(g_omega[1])}};
     }
     out.push_back(f);
   }

@@ -26,7 +26,7 @@
 namespace xshell {
 
 struct JointForce {
-  int vertex = 0;                 // graph vertex of the joint
+  int vertex = 0;                    // graph vertex of the joint
   std::array<int, 2> rod{{-1, -1}};  // full rod of A and B (topology.hpp)
   std::array<Eigen::Vector3d, 2> force_on{{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()}};
   std::optional<std::array<Eigen::Vector3d, 2>> moment_on;  // rotation joints

@@ -48,7 +48,9 @@ std::array<int, 7> terminal_variables(const ElasticRod& rod, int side) {
   return v;
 }
 
-int terminal_edge_index(const ElasticRod& rod, int side) { return side == 0 ? 0 : rod.num_edges() - 1; }
+int terminal_edge_index(const ElasticRod& rod, int side) {
+  return side == 0 ? 0 : rod.num_edges() - 1;
+}
 
 }  // namespace
 
@@ -59,8 +61,10 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
   const int ns = linkage.num_segments();
   plans_.resize(ns);
   std::vector<Eigen::Triplet<double>> pattern_entries;
-  std::vector<std::array<int, 2>> contribution_entry;  // (free row, free column) per Hessian contribution
-  std::vector<std::vector<int>> kept_entries(ns);       // per segment, its local entries (column-major index)
+  std::vector<std::array<int, 2>>
+      contribution_entry;  // (free row, free column) per Hessian contribution
+  std::vector<std::vector<int>> kept_entries(
+      ns);  // per segment, its local entries (column-major index)
   for (int s = 0; s < ns; ++s) {
     const ElasticRod& rod = linkage.segment(s);
     const SegmentTopology& seg = linkage.topology().segments[s];
@@ -76,7 +80,8 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
     for (int k = 0; k < rod.num_dofs(); ++k) {
       const int r = linkage.reduced_index(s, k);
       if ((r < 0) != (controlled_mask[k] == 1))
-        throw std::logic_error("LinkageAssembly: joint-controlled variables differ from the linkage's");
+        throw std::logic_error(
+            "LinkageAssembly: joint-controlled variables differ from the linkage's");
     }
     int free_count = 0;
     for (int k = 0; k < rod.num_dofs(); ++k)
@@ -90,7 +95,8 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
     for (int side = 0; side < 2; ++side) {
       if (seg.joint[side] < 0) continue;
       plan.joint_local[side] = static_cast<int>(plan.global.size());
-      for (int k = 0; k < 9; ++k) plan.global.push_back(linkage.joint_dof_offset(seg.joint[side]) + k);
+      for (int k = 0; k < 9; ++k)
+        plan.global.push_back(linkage.joint_dof_offset(seg.joint[side]) + k);
     }
     max_rod_dofs_ = std::max(max_rod_dofs_, rod.num_dofs());
     max_local_ = std::max(max_local_, plan.size());
@@ -105,7 +111,8 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
     Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> local =
         Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>::Constant(m, m, false);
     for (int c = 0; c < free_count; ++c)
-      for (int r = 0; r < free_count; ++r) local(r, c) = rod_pattern(plan.free_full[r], plan.free_full[c]);
+      for (int r = 0; r < free_count; ++r)
+        local(r, c) = rod_pattern(plan.free_full[r], plan.free_full[c]);
     for (int side = 0; side < 2; ++side) {
       const int o = plan.joint_local[side];
       if (o < 0) continue;
@@ -169,7 +176,8 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
     }
   hessian_sources_begin_.assign(shared_slots_.size() + 1, 0);
   for (long k : shared_slots_) hessian_sources_begin_[shared_index[k] + 1] = sources_of_slot[k];
-  for (size_t i = 0; i < shared_slots_.size(); ++i) hessian_sources_begin_[i + 1] += hessian_sources_begin_[i];
+  for (size_t i = 0; i < shared_slots_.size(); ++i)
+    hessian_sources_begin_[i + 1] += hessian_sources_begin_[i];
   hessian_sources_.resize(hessian_sources_begin_.back());
   std::vector<long> fill(hessian_sources_begin_.begin(), hessian_sources_begin_.end() - 1);
   // Appends local entry -> target to runs, extending the last run when both
@@ -234,7 +242,8 @@ LinkageAssembly::LinkageAssembly(const RodLinkage& linkage, const std::vector<in
   gradient_contributions_.assign(gradient_shared_count, 0.0);
 }
 
-void LinkageAssembly::copy_runs(const std::vector<CopyRun>& runs, const double* local, double* target) {
+void LinkageAssembly::copy_runs(const std::vector<CopyRun>& runs, const double* local,
+                                double* target) {
   for (const CopyRun& run : runs)
     for (int i = 0; i < run.length; ++i) target[run.target + i] = local[run.first + i];
 }
@@ -258,8 +267,10 @@ void LinkageAssembly::joints_then_segments(int num_joints, int num_segments, Joi
 #pragma omp barrier
 }
 
-bool LinkageAssembly::matches(const RodLinkage& linkage, const std::vector<int>& free_position) const {
-  return num_dofs_ == linkage.num_dofs() && static_cast<int>(plans_.size()) == linkage.num_segments() &&
+bool LinkageAssembly::matches(const RodLinkage& linkage,
+                              const std::vector<int>& free_position) const {
+  return num_dofs_ == linkage.num_dofs() &&
+         static_cast<int>(plans_.size()) == linkage.num_segments() &&
          free_position_ == free_position;
 }
 
@@ -278,8 +289,8 @@ void LinkageAssembly::prepare_scratch() {
 }
 
 void LinkageAssembly::local_derivatives(const RodLinkage& linkage, int s,
-                                        const std::vector<Eigen::VectorXd>* forces, bool with_hessian,
-                                        Scratch& w) const {
+                                        const std::vector<Eigen::VectorXd>* forces,
+                                        bool with_hessian, Scratch& w) const {
   const ElasticRod& rod = linkage.segment(s);
   const SegmentTopology& seg = linkage.topology().segments[s];
   const SegmentPlan& plan = plans_[s];
@@ -360,15 +371,17 @@ void LinkageAssembly::local_derivatives(const RodLinkage& linkage, int s,
       L.block<9, 9>(o, p) += block;
       if (other != side) L.block<9, 9>(p, o) += block.transpose();
     }
-    for (int k = 0; k < 7; ++k) L.block<6, 6>(o + 3, o + 3) += gv[cs[k]] * w.terminal[side].hessians[k];
+    for (int k = 0; k < 7; ++k)
+      L.block<6, 6>(o + 3, o + 3) += gv[cs[k]] * w.terminal[side].hessians[k];
     const Eigen::Matrix<double, 9, 9> diagonal = L.block<9, 9>(o, o);
     L.block<9, 9>(o, o) = 0.5 * (diagonal + diagonal.transpose());  // symmetric bit for bit
   }
 }
 
-void LinkageAssembly::gradient(const RodLinkage& linkage, const std::vector<Eigen::VectorXd>* forces,
-                               Eigen::VectorXd& out) {
-  if (num_dofs_ != linkage.num_dofs()) throw std::logic_error("LinkageAssembly: built for another linkage");
+void LinkageAssembly::gradient(const RodLinkage& linkage,
+                               const std::vector<Eigen::VectorXd>* forces, Eigen::VectorXd& out) {
+  if (num_dofs_ != linkage.num_dofs())
+    throw std::logic_error("LinkageAssembly: built for another linkage");
   prepare_scratch();
   const int ns = static_cast<int>(plans_.size());
   out.resize(num_dofs_);
@@ -403,17 +416,21 @@ void LinkageAssembly::sum_gradient(Eigen::VectorXd& out) const {
 
 void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen::VectorXd>* forces,
                               Eigen::SparseMatrix<double>& out, Eigen::VectorXd* gradient) {
-  if (num_dofs_ != linkage.num_dofs()) throw std::logic_error("LinkageAssembly: built for another linkage");
+  if (num_dofs_ != linkage.num_dofs())
+    throw std::logic_error("LinkageAssembly: built for another linkage");
   prepare_scratch();
   // `out` keeps pattern_ between calls; check it fully only when it is not
   // the matrix written last time.
-  const bool known = &out == last_output_ && out.valuePtr() == last_values_ && out.nonZeros() == pattern_.nonZeros();
+  const bool known = &out == last_output_ && out.valuePtr() == last_values_ &&
+                     out.nonZeros() == pattern_.nonZeros();
   if (!known) {
     const bool same_pattern =
         out.rows() == pattern_.rows() && out.cols() == pattern_.cols() && out.isCompressed() &&
         out.nonZeros() == pattern_.nonZeros() &&
-        std::equal(pattern_.outerIndexPtr(), pattern_.outerIndexPtr() + pattern_.cols() + 1, out.outerIndexPtr()) &&
-        std::equal(pattern_.innerIndexPtr(), pattern_.innerIndexPtr() + pattern_.nonZeros(), out.innerIndexPtr());
+        std::equal(pattern_.outerIndexPtr(), pattern_.outerIndexPtr() + pattern_.cols() + 1,
+                   out.outerIndexPtr()) &&
+        std::equal(pattern_.innerIndexPtr(), pattern_.innerIndexPtr() + pattern_.nonZeros(),
+                   out.innerIndexPtr());
     if (!same_pattern) out = pattern_;
     last_output_ = &out;
     last_values_ = out.valuePtr();

@@ -49,7 +49,8 @@ class LinkageAssembly {
   // Gradient of E - sum_s forces_s . v_s with respect to all reduced
   // unknowns (linkage.num_dofs()); forces: one vector per segment (its full
   // variables) or null.
-  void gradient(const RodLinkage& linkage, const std::vector<Eigen::VectorXd>* forces, Eigen::VectorXd& out);
+  void gradient(const RodLinkage& linkage, const std::vector<Eigen::VectorXd>* forces,
+                Eigen::VectorXd& out);
   // Its Hessian restricted to the free unknowns (both triangles). `out` gets
   // pattern() the first time (or when its pattern differs) and then only
   // new values. With `gradient`, also the gradient above, from the same
@@ -65,12 +66,15 @@ class LinkageAssembly {
     long target;
   };
   struct SegmentPlan {
-    std::vector<int> free_full;                  // full variable of each local free unknown
-    std::array<int, 2> joint_local{{-1, -1}};    // local offset of each end's joint block, or -1
-    std::array<std::array<int, 7>, 2> controlled{};  // full variable of each terminal value, per end
-    std::array<std::vector<int>, 2> coupled_free;    // local free unknowns the rod couples to each end's values
-    std::array<bool, 2> ends_coupled{{false, false}};  // whether the rod couples the two ends' values
-    std::vector<int> global;                     // reduced index of each local unknown
+    std::vector<int> free_full;                // full variable of each local free unknown
+    std::array<int, 2> joint_local{{-1, -1}};  // local offset of each end's joint block, or -1
+    std::array<std::array<int, 7>, 2>
+        controlled{};  // full variable of each terminal value, per end
+    std::array<std::vector<int>, 2>
+        coupled_free;  // local free unknowns the rod couples to each end's values
+    std::array<bool, 2> ends_coupled{
+        {false, false}};      // whether the rod couples the two ends' values
+    std::vector<int> global;  // reduced index of each local unknown
     // Kept local Hessian entries (column-major index), as runs of
     // consecutive entries: those that share their global entry with other
     // contributions, copied to the contribution buffer (a range starting at
@@ -96,15 +100,17 @@ class LinkageAssembly {
     TerminalEdgeDerivatives terminal[2];
   };
   // Local gradient (and Hessian) of segment s into scratch.
-  void local_derivatives(const RodLinkage& linkage, int s, const std::vector<Eigen::VectorXd>* forces,
-                         bool with_hessian, Scratch& scratch) const;
+  void local_derivatives(const RodLinkage& linkage, int s,
+                         const std::vector<Eigen::VectorXd>* forces, bool with_hessian,
+                         Scratch& scratch) const;
   // target[run.target + i] = local[run.first + i] over the runs.
   static void copy_runs(const std::vector<CopyRun>& runs, const double* local, double* target);
   // Inside the caller's parallel region: joint_work(j) for every joint, a
   // barrier, segment_work(s) for every segment, a barrier; each thread
   // takes the same ranges at every call (affine_loop.hpp).
   template <class JointWork, class SegmentWork>
-  void joints_then_segments(int num_joints, int num_segments, JointWork&& joint_work, SegmentWork&& segment_work);
+  void joints_then_segments(int num_joints, int num_segments, JointWork&& joint_work,
+                            SegmentWork&& segment_work);
   // Copies segment `plan`'s local gradient to the contribution buffer and to
   // out (the gradient, num_dofs_).
   void store_gradient(const SegmentPlan& plan, const double* local, double* out);

@@ -7,8 +7,8 @@ namespace xshell {
 namespace {
 
 // Moment of a rigid rotation of the free end's clamped edge (header).
-Eigen::Vector3d clamp_moment(const ElasticRod& rod, int edge, bool at_start, const Eigen::VectorXd& g_next,
-                             double g_theta) {
+Eigen::Vector3d clamp_moment(const ElasticRod& rod, int edge, bool at_start,
+                             const Eigen::VectorXd& g_next, double g_theta) {
   const Eigen::Vector3d e = at_start ? rod.edge(edge) : Eigen::Vector3d(-rod.edge(edge));
   const Eigen::Vector3d t = rod.tangent(edge);  // the theta's edge, in its own direction
   const Eigen::Vector3d t_source = rod.source_frames()[edge].tangent;

@@ -39,11 +39,11 @@
 namespace xshell {
 
 struct SupportReaction {
-  int vertex = 0;                                    // graph vertex
+  int vertex = 0;                                      // graph vertex
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // where it acts (model coordinates)
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // on the linkage
-  std::optional<Eigen::Vector3d> moment;             // about `position`, where orientation is fixed
-  std::optional<double> opening_torque;              // where the opening angle is fixed
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();     // on the linkage
+  std::optional<Eigen::Vector3d> moment;  // about `position`, where orientation is fixed
+  std::optional<double> opening_torque;   // where the opening angle is fixed
 };
 
 // One entry per support of problem.supports() (the default pin included),

@@ -45,7 +45,8 @@ std::vector<Eigen::Vector3d> readable_basis(const Eigen::MatrixXd& basis) {
     const Eigen::Vector3d e = Eigen::Vector3d::Unit(axis);
     if ((e - basis * (basis.transpose() * e)).norm() < 1e-6) add_if_new(e);
   }
-  for (Eigen::Index c = 0; c < basis.cols() && static_cast<Eigen::Index>(out.size()) < basis.cols(); ++c)
+  for (Eigen::Index c = 0; c < basis.cols() && static_cast<Eigen::Index>(out.size()) < basis.cols();
+       ++c)
     add_if_new(basis.col(c));
   return out;
 }
@@ -87,9 +88,15 @@ std::vector<RigidMotion> free_rigid_motions(const std::vector<VertexSupport>& su
         case SupportDof::Position:
           for (int axis = 0; axis < 3; ++axis) hold_component(axis);
           break;
-        case SupportDof::X: hold_component(0); break;
-        case SupportDof::Y: hold_component(1); break;
-        case SupportDof::Z: hold_component(2); break;
+        case SupportDof::X:
+          hold_component(0);
+          break;
+        case SupportDof::Y:
+          hold_component(1);
+          break;
+        case SupportDof::Z:
+          hold_component(2);
+          break;
         case SupportDof::Orientation:
           for (int axis = 0; axis < 3; ++axis) {
             Eigen::Matrix<double, 1, 6> row = Eigen::Matrix<double, 1, 6>::Zero();
@@ -97,7 +104,8 @@ std::vector<RigidMotion> free_rigid_motions(const std::vector<VertexSupport>& su
             rows.push_back(row);
           }
           break;
-        case SupportDof::OpeningAngle: break;
+        case SupportDof::OpeningAngle:
+          break;
       }
   }
   Eigen::MatrixXd a(static_cast<Eigen::Index>(rows.size()), 6);

@@ -36,10 +36,11 @@ RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
     : graph_(graph), options_(options), topology_(build_topology(graph)) {
   const int n = options.subdivisions;
   if (n < kMinSubdivisions)
-    throw ModelError("subdivisions must be at least " + std::to_string(kMinSubdivisions) + ", got " +
-                     std::to_string(n));
+    throw ModelError("subdivisions must be at least " + std::to_string(kMinSubdivisions) +
+                     ", got " + std::to_string(n));
   const int ns = static_cast<int>(topology_.segments.size());
-  if (!options.segment_materials.empty() && static_cast<int>(options.segment_materials.size()) != ns)
+  if (!options.segment_materials.empty() &&
+      static_cast<int>(options.segment_materials.size()) != ns)
     throw ModelError("segment materials: " + std::to_string(options.segment_materials.size()) +
                      " given for " + std::to_string(ns) + " segments");
 
@@ -57,15 +58,17 @@ RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
       l[x] = std::numeric_limits<double>::infinity();
       for (const SegmentEnd& end : jt.ends[x]) l[x] = std::min(l[x], edge_length[end.segment]);
     }
-    if (options.joint_kind == JointKind::EdgeVectors && nearly_parallel(jt.tangent[0], jt.tangent[1])) {
+    if (options.joint_kind == JointKind::EdgeVectors &&
+        nearly_parallel(jt.tangent[0], jt.tangent[1])) {
       const double angle = std::min(jt.opening_angle, M_PI - jt.opening_angle) * 180.0 / M_PI;
-      throw ModelError("vertex " + std::to_string(jt.vertex) + ": its rods are " + degrees_text(angle) +
-                       " degrees from parallel; edge-vector joints need at least " +
-                       degrees_text(kMinEdgeVectorAngleDegrees) +
-                       " degree (their normal e_A x e_B is ill-defined there): use rotation joints");
+      throw ModelError(
+          "vertex " + std::to_string(jt.vertex) + ": its rods are " + degrees_text(angle) +
+          " degrees from parallel; edge-vector joints need at least " +
+          degrees_text(kMinEdgeVectorAngleDegrees) +
+          " degree (their normal e_A x e_B is ill-defined there): use rotation joints");
     }
-    joints_.emplace_back(graph.vertices[jt.vertex], jt.tangent[0], jt.tangent[1], jt.normal, l[0], l[1],
-                         options.joint_kind);
+    joints_.emplace_back(graph.vertices[jt.vertex], jt.tangent[0], jt.tangent[1], jt.normal, l[0],
+                         l[1], options.joint_kind);
   }
 
   // Segments: nodes, least-twisted frames, rest state.
@@ -95,26 +98,32 @@ RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
     }
     for (int j = 0; j < n; ++j)
       if ((nodes[j + 1] - nodes[j]).norm() <= 1e-12 * seg.length)
-        throw ModelError("segment " + std::to_string(s) + " (vertices " + std::to_string(seg.vertex[0]) +
-                         "-" + std::to_string(seg.vertex[1]) +
+        throw ModelError("segment " + std::to_string(s) + " (vertices " +
+                         std::to_string(seg.vertex[0]) + "-" + std::to_string(seg.vertex[1]) +
                          ") is too short for its joints' terminal edges");
 
     // Twist-free frames, then thetas putting d2 on the joint normals.
     const Eigen::Vector3d start_d1 =
-        seg.joint[0] >= 0 ? Eigen::Vector3d(joints_[seg.joint[0]].normal().cross(nodes[1] - nodes[0]))
-                          : Eigen::Vector3d::Zero();
-    ElasticRod rod(nodes, xshell::stiffness(segment_material(s)), seg.joint[0] >= 0 ? &start_d1 : nullptr);
+        seg.joint[0] >= 0
+            ? Eigen::Vector3d(joints_[seg.joint[0]].normal().cross(nodes[1] - nodes[0]))
+            : Eigen::Vector3d::Zero();
+    ElasticRod rod(nodes, xshell::stiffness(segment_material(s)),
+                   seg.joint[0] >= 0 ? &start_d1 : nullptr);
     std::vector<double> thetas(n, 0.0);
     double theta_start = 0.0, theta_end = 0.0;
-    if (seg.joint[0] >= 0) theta_start = theta_for_normal(rod.reference_frame(0), joints_[seg.joint[0]].normal());
-    if (seg.joint[1] >= 0) theta_end = theta_for_normal(rod.reference_frame(n - 1), joints_[seg.joint[1]].normal());
+    if (seg.joint[0] >= 0)
+      theta_start = theta_for_normal(rod.reference_frame(0), joints_[seg.joint[0]].normal());
+    if (seg.joint[1] >= 0)
+      theta_end = theta_for_normal(rod.reference_frame(n - 1), joints_[seg.joint[1]].normal());
     if (seg.joint[0] < 0) theta_start = theta_end;
     if (seg.joint[1] < 0) theta_end = theta_start;
     theta_end = theta_start + std::remainder(theta_end - theta_start, 2.0 * M_PI);
     // Linear in arc length (edge midpoints) between the two end edges.
     std::vector<double> arc(n, 0.0);
-    for (int j = 1; j < n; ++j) arc[j] = arc[j - 1] + 0.5 * (rod.edge(j - 1).norm() + rod.edge(j).norm());
-    for (int j = 0; j < n; ++j) thetas[j] = theta_start + (theta_end - theta_start) * arc[j] / arc[n - 1];
+    for (int j = 1; j < n; ++j)
+      arc[j] = arc[j - 1] + 0.5 * (rod.edge(j - 1).norm() + rod.edge(j).norm());
+    for (int j = 0; j < n; ++j)
+      thetas[j] = theta_start + (theta_end - theta_start) * arc[j] / arc[n - 1];
     rod.set_configuration(nodes, thetas);
     rod.update_source_frames();
     rod.set_rest_state_from_current();
@@ -167,7 +176,8 @@ Eigen::VectorXd RodLinkage::dofs() const {
     const std::vector<int>& slot = slots_[s];
     for (int k = 0; k < rod.num_nodes(); ++k)
       for (int c = 0; c < 3; ++c)
-        if (slot[ElasticRod::node_dof(k) + c] >= 0) r[slot[ElasticRod::node_dof(k) + c]] = rod.nodes()[k][c];
+        if (slot[ElasticRod::node_dof(k) + c] >= 0)
+          r[slot[ElasticRod::node_dof(k) + c]] = rod.nodes()[k][c];
     for (int j = 0; j < rod.num_edges(); ++j)
       if (slot[rod.theta_dof(j)] >= 0) r[slot[rod.theta_dof(j)]] = rod.thetas()[j];
   }
@@ -180,7 +190,8 @@ TerminalEdge<double> RodLinkage::terminal(int s, int side) const {
   const ElasticRod& rod = rods_[s];
   const int edge = side == 0 ? 0 : rod.num_edges() - 1;
   const double hint = theta_hints_.empty() ? rod.thetas()[edge] : theta_hints_[s][side];
-  return joints_[seg.joint[side]].terminal_edge(seg.label[side], seg.sign[side], rod.source_frames()[edge], hint);
+  return joints_[seg.joint[side]].terminal_edge(seg.label[side], seg.sign[side],
+                                                rod.source_frames()[edge], hint);
 }
 
 void RodLinkage::record_theta_hints() {
@@ -195,7 +206,8 @@ void RodLinkage::set_dofs(const Eigen::VectorXd& r, RodEnergy* energy) {
     const JointParams p = r.segment<9>(joint_offset_[j]);
     const std::string problem = joints_[j].check_params(p);
     if (!problem.empty())
-      throw std::domain_error("joint at vertex " + std::to_string(topology_.joints[j].vertex) + ": " + problem);
+      throw std::domain_error("joint at vertex " + std::to_string(topology_.joints[j].vertex) +
+                              ": " + problem);
     joints_[j].set_params(p);
   }
   std::vector<RodEnergy> parts(energy ? rods_.size() : 0);
@@ -222,15 +234,17 @@ LinkageState RodLinkage::state() const {
   LinkageState out;
   for (const ElasticRod& rod : rods_)
     out.segments.push_back({rod.nodes(), rod.thetas(), rod.source_frames(), rod.twist_hints()});
-  for (const Joint& joint : joints_) out.joints.push_back({joint.kind(), joint.params(), joint.reference_frame()});
+  for (const Joint& joint : joints_)
+    out.joints.push_back({joint.kind(), joint.params(), joint.reference_frame()});
   return out;
 }
 
 void RodLinkage::restore(const LinkageState& state) {
   if (state.segments.size() != rods_.size() || state.joints.size() != joints_.size())
-    throw std::invalid_argument("the state has " + std::to_string(state.segments.size()) + " segments and " +
-                                std::to_string(state.joints.size()) + " joints, the linkage " +
-                                std::to_string(rods_.size()) + " and " + std::to_string(joints_.size()));
+    throw std::invalid_argument("the state has " + std::to_string(state.segments.size()) +
+                                " segments and " + std::to_string(state.joints.size()) +
+                                " joints, the linkage " + std::to_string(rods_.size()) + " and " +
+                                std::to_string(joints_.size()));
   for (size_t s = 0; s < rods_.size(); ++s) {
     const SegmentState& seg = state.segments[s];
     rods_[s].restore(seg.nodes, seg.thetas, seg.source_frames, seg.twist_hints);
@@ -244,8 +258,8 @@ void RodLinkage::restore(const LinkageState& state) {
     try {
       joints_[j] = convert_joint(saved, options_.joint_kind);
     } catch (const std::domain_error& e) {
-      throw std::invalid_argument("joint at vertex " + std::to_string(topology_.joints[j].vertex) + ": " +
-                                  e.what());
+      throw std::invalid_argument("joint at vertex " + std::to_string(topology_.joints[j].vertex) +
+                                  ": " + e.what());
     }
   }
   // Recompute the joint-controlled variables from the joints, with the

@@ -161,8 +161,8 @@ class RodLinkage {
   // A segment's local reduced unknowns: its free ones, then the 9 of the
   // joint at its start, then those at its end (when there are joints).
   struct LocalMap {
-    std::vector<int> global;  // reduced index of each local unknown
-    Eigen::MatrixXd jacobian;  // full variables x local unknowns
+    std::vector<int> global;                        // reduced index of each local unknown
+    Eigen::MatrixXd jacobian;                       // full variables x local unknowns
     std::vector<std::pair<int, int>> joint_blocks;  // (local offset, side) per joint end
     std::array<Eigen::Matrix<double, 9, 9>, 7> hessians[2];
     std::array<int, 7> controlled[2];  // full variable of each terminal value, per side

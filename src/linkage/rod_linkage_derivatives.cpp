@@ -31,7 +31,8 @@ RodLinkage::LocalMap RodLinkage::local_map(int s, bool with_hessians) const {
     map.joint_blocks.emplace_back(static_cast<int>(map.global.size()), side);
     for (int k = 0; k < 9; ++k) map.global.push_back(joint_offset_[seg.joint[side]] + k);
   }
-  map.jacobian = Eigen::MatrixXd::Zero(rod.num_dofs(), static_cast<Eigen::Index>(map.global.size()));
+  map.jacobian =
+      Eigen::MatrixXd::Zero(rod.num_dofs(), static_cast<Eigen::Index>(map.global.size()));
   for (int k = 0; k < rod.num_dofs(); ++k)
     if (slot[k] >= 0) map.jacobian(k, slot[k] - segment_offset_[s]) = 1.0;
   for (const auto& [offset, side] : map.joint_blocks) {
@@ -40,11 +41,11 @@ RodLinkage::LocalMap RodLinkage::local_map(int s, bool with_hessians) const {
     JointHessian scratch[7];
     if (with_hessians)
       joints_[seg.joint[side]].terminal_edge_derivatives(seg.label[side], seg.sign[side],
-                                                         rod.source_frames()[edge], rod.thetas()[edge], jac,
-                                                         scratch);
+                                                         rod.source_frames()[edge],
+                                                         rod.thetas()[edge], jac, scratch);
     else
-      terminal_edge_jacobian(joints_[seg.joint[side]], seg.label[side], seg.sign[side], rod.source_frames()[edge],
-                             rod.thetas()[edge], jac);
+      terminal_edge_jacobian(joints_[seg.joint[side]], seg.label[side], seg.sign[side],
+                             rod.source_frames()[edge], rod.thetas()[edge], jac);
     for (int k = 0; k < rod.num_dofs(); ++k) {
       if (slot[k] >= 0) continue;
       const int code = -1 - slot[k];
@@ -81,10 +82,12 @@ void RodLinkage::hessian_triplets(std::vector<Eigen::Triplet<double>>& triplets,
     const LocalMap map = local_map(s, true);
     Eigen::MatrixXd local = map.jacobian.transpose() * hv * map.jacobian;
     for (const auto& [offset, side] : map.joint_blocks)
-      for (int o = 0; o < 7; ++o) local.block<9, 9>(offset, offset) += gv[map.controlled[side][o]] * map.hessians[side][o];
+      for (int o = 0; o < 7; ++o)
+        local.block<9, 9>(offset, offset) += gv[map.controlled[side][o]] * map.hessians[side][o];
     const Eigen::Index m = local.rows();
     for (Eigen::Index c = 0; c < m; ++c)
-      for (Eigen::Index r = 0; r < m; ++r) triplets.emplace_back(map.global[r], map.global[c], local(r, c));
+      for (Eigen::Index r = 0; r < m; ++r)
+        triplets.emplace_back(map.global[r], map.global[c], local(r, c));
   }
 }
 
@@ -108,7 +111,8 @@ Eigen::VectorXd RodLinkage::lumped_mass(bool unit_density) const {
   for (int s = 0; s < num_segments(); ++s) {
     const Eigen::VectorXd mv = rods_[s].lumped_mass(unit_density);
     const LocalMap map = local_map(s, false);
-    const Eigen::VectorXd local = (map.jacobian.array().square().colwise() * mv.array()).colwise().sum();
+    const Eigen::VectorXd local =
+        (map.jacobian.array().square().colwise() * mv.array()).colwise().sum();
     for (size_t k = 0; k < map.global.size(); ++k) m[map.global[k]] += local[k];
   }
   return m;

@@ -9,7 +9,8 @@ LinkageStresses linkage_stresses(const RodLinkage& linkage) {
   auto consider = [&](EdgeLocation& best, double value, int s, int j) {
     if (best.segment >= 0 && value <= best.value) return;
     const ElasticRod& rod = linkage.segment(s);
-    best = {value, s, j, linkage.topology().segments[s].rod, 0.5 * (rod.nodes()[j] + rod.nodes()[j + 1])};
+    best = {value, s, j, linkage.topology().segments[s].rod,
+            0.5 * (rod.nodes()[j] + rod.nodes()[j + 1])};
   };
   for (int s = 0; s < linkage.num_segments(); ++s) {
     const ElasticRod& rod = linkage.segment(s);

@@ -21,20 +21,20 @@ namespace xshell {
 struct EdgeStress {
   SectionForces forces;
   SectionStresses stresses;
-  double equivalent = 0.0;             // sqrt(sigma_max^2 + 3 tau^2)
-  std::optional<double> utilisation;   // equivalent / strength
+  double equivalent = 0.0;            // sqrt(sigma_max^2 + 3 tau^2)
+  std::optional<double> utilisation;  // equivalent / strength
 };
 
 // Where a maximum occurs.
 struct EdgeLocation {
   double value = 0.0;
   int segment = -1, edge = -1;
-  int rod = -1;  // the full rod of the segment (topology.hpp)
+  int rod = -1;                                        // the full rod of the segment (topology.hpp)
   Eigen::Vector3d midpoint = Eigen::Vector3d::Zero();  // model coordinates
 };
 
 struct LinkageStresses {
-  std::vector<std::vector<EdgeStress>> segments;  // [segment][edge]
+  std::vector<std::vector<EdgeStress>> segments;                         // [segment][edge]
   EdgeLocation max_normal_stress, max_torsional_shear, max_axial_force;  // |N| for the last
   std::optional<EdgeLocation> max_utilisation;  // when some segment has a strength
 };

@@ -15,8 +15,8 @@ std::string vertex_name(int v) { return "vertex " + std::to_string(v); }
 // Angle from the old to the new reference direction of an edge, as the edge
 // moves with velocity de: the rate at which theta must change for the
 // material frame to move the same way with the new source frame.
-double theta_rate_correction(const Eigen::Vector3d& e, const Eigen::Vector3d& de, const SourceFrame& old_source,
-                             const SourceFrame& new_source) {
+double theta_rate_correction(const Eigen::Vector3d& e, const Eigen::Vector3d& de,
+                             const SourceFrame& old_source, const SourceFrame& new_source) {
   using D = Dual<1>;
   const D tau = D::variable(0, 0.0);
   const V3<D> edge = lift<D>(e) + lift<D>(de) * tau;
@@ -27,7 +27,8 @@ double theta_rate_correction(const Eigen::Vector3d& e, const Eigen::Vector3d& de
 }
 }  // namespace
 
-LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : linkage_(std::move(linkage)) {
+LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup)
+    : linkage_(std::move(linkage)) {
   const RodLinkage& l = linkage_;
   const int nv = static_cast<int>(l.graph().vertices.size());
   fixed_.assign(l.num_dofs(), false);
@@ -41,7 +42,8 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
   length_scale_ = (hi - lo).norm();
   double bending_max = 0.0;
   for (int s = 0; s < l.num_segments(); ++s)
-    bending_max = std::max({bending_max, l.segment(s).stiffness().bending1, l.segment(s).stiffness().bending2});
+    bending_max = std::max(
+        {bending_max, l.segment(s).stiffness().bending1, l.segment(s).stiffness().bending2});
   force_scale_ = bending_max / (length_scale_ * length_scale_);
 
   // Supports.
@@ -53,12 +55,14 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
   std::vector<VertexSupport> supports = setup.supports;
   if (supports.empty()) {
     if (l.num_joints() == 0)
-      throw ModelError("the linkage has no joint to pin by default: give supports that hold it in place");
+      throw ModelError(
+          "the linkage has no joint to pin by default: give supports that hold it in place");
     const Eigen::Vector3d centre = 0.5 * (lo + hi);
     int best = -1;
     for (int j = 0; j < l.num_joints(); ++j) {
       const int v = l.topology().joints[j].vertex;
-      if (best < 0 || (l.graph().vertices[v] - centre).norm() < (l.graph().vertices[best] - centre).norm() - 1e-12 * length_scale_)
+      if (best < 0 || (l.graph().vertices[v] - centre).norm() <
+                          (l.graph().vertices[best] - centre).norm() - 1e-12 * length_scale_)
         best = v;
     }
     default_support_ = best;
@@ -70,7 +74,8 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
   for (const VertexSupport& support : supports) {
     check_vertex(support.vertex, "a support");
     if (!support.displacement.allFinite())
-      throw ModelError("support at " + vertex_name(support.vertex) + ": the displacement is not finite");
+      throw ModelError("support at " + vertex_name(support.vertex) +
+                       ": the displacement is not finite");
     if (support.displacement.isZero(0.0)) continue;
     bool held[3] = {false, false, false};
     bool clamped = false;
@@ -83,15 +88,16 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
     }
     for (int c = 0; c < 3; ++c)
       if (support.displacement[c] != 0.0 && !held[c])
-        throw ModelError("support at " + vertex_name(support.vertex) + ": its displacement moves the " +
-                         std::string(1, char('x' + c)) +
+        throw ModelError("support at " + vertex_name(support.vertex) +
+                         ": its displacement moves the " + std::string(1, char('x' + c)) +
                          " component, which the support does not hold (fix \"position\" or \"" +
                          std::string(1, char('x' + c)) + "\")");
     const int j = l.topology().joint_of_vertex[support.vertex];
     if (j >= 0) {
       const int o = l.joint_dof_offset(j) + kPosition;
       for (int c = 0; c < 3; ++c)
-        if (held[c]) displaced[o + c] = l.graph().vertices[support.vertex][c] + support.displacement[c];
+        if (held[c])
+          displaced[o + c] = l.graph().vertices[support.vertex][c] + support.displacement[c];
       continue;
     }
     const RodLinkage::FreeEnd f = l.free_end(support.vertex);
@@ -120,16 +126,29 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
           continue;
         }
         if (l.joint(j).kind() == JointKind::EdgeVectors && dof == SupportDof::OpeningAngle)
-          throw ModelError("support at " + vertex_name(support.vertex) +
-                           ": edge-vector joints have no opening-angle unknown; fix \"orientation\" (both rod "
-                           "directions, hence the angle too) or use rotation joints");
+          throw ModelError(
+              "support at " + vertex_name(support.vertex) +
+              ": edge-vector joints have no opening-angle unknown; fix \"orientation\" (both rod "
+              "directions, hence the angle too) or use rotation joints");
         switch (dof) {
-          case SupportDof::Position: for (int c = 0; c < 3; ++c) fix(o + kPosition + c); break;
-          case SupportDof::X: fix(o + kPosition); break;
-          case SupportDof::Y: fix(o + kPosition + 1); break;
-          case SupportDof::Z: fix(o + kPosition + 2); break;
-          case SupportDof::Orientation: for (int c = 0; c < 3; ++c) fix(o + kOmega + c); break;
-          case SupportDof::OpeningAngle: fix(o + kAlpha); break;
+          case SupportDof::Position:
+            for (int c = 0; c < 3; ++c) fix(o + kPosition + c);
+            break;
+          case SupportDof::X:
+            fix(o + kPosition);
+            break;
+          case SupportDof::Y:
+            fix(o + kPosition + 1);
+            break;
+          case SupportDof::Z:
+            fix(o + kPosition + 2);
+            break;
+          case SupportDof::Orientation:
+            for (int c = 0; c < 3; ++c) fix(o + kOmega + c);
+            break;
+          case SupportDof::OpeningAngle:
+            fix(o + kAlpha);
+            break;
         }
         continue;
       }
@@ -144,10 +163,18 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
         fix(r);
       };
       switch (dof) {
-        case SupportDof::Position: for (int c = 0; c < 3; ++c) fix_full(3 * end + c); break;
-        case SupportDof::X: fix_full(3 * end); break;
-        case SupportDof::Y: fix_full(3 * end + 1); break;
-        case SupportDof::Z: fix_full(3 * end + 2); break;
+        case SupportDof::Position:
+          for (int c = 0; c < 3; ++c) fix_full(3 * end + c);
+          break;
+        case SupportDof::X:
+          fix_full(3 * end);
+          break;
+        case SupportDof::Y:
+          fix_full(3 * end + 1);
+          break;
+        case SupportDof::Z:
+          fix_full(3 * end + 2);
+          break;
         case SupportDof::Orientation:
           for (int c = 0; c < 3; ++c) {
             fix_full(3 * end + c);
@@ -194,7 +221,8 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup) : 
   // graph's vertices.
   input_dofs_ = Eigen::VectorXd::Zero(l.num_dofs());
   for (int j = 0; j < l.num_joints(); ++j)
-    input_dofs_.segment<3>(l.joint_dof_offset(j) + kPosition) = l.graph().vertices[l.topology().joints[j].vertex];
+    input_dofs_.segment<3>(l.joint_dof_offset(j) + kPosition) =
+        l.graph().vertices[l.topology().joints[j].vertex];
 }
 
 Eigen::VectorXd LinkageProblem::free_dofs() const {
@@ -230,7 +258,8 @@ EnergyReport LinkageProblem::energy_with(const RodEnergy& e) const {
   std::vector<double> work(linkage_.num_segments(), 0.0);
   for_each_segment(linkage_.num_segments(), [&](int s) {
     if (has_segment_loads_[s])
-      work[s] = segment_forces_[s].dot(linkage_.segment(s).dofs() - linkage_.input_segment_dofs()[s]);
+      work[s] =
+          segment_forces_[s].dot(linkage_.segment(s).dofs() - linkage_.input_segment_dofs()[s]);
   });
   for (double w : work) report.external -= w;
   if (has_point_loads_) report.external -= point_forces_.dot(linkage_.dofs() - input_dofs_);
@@ -239,7 +268,8 @@ EnergyReport LinkageProblem::energy_with(const RodEnergy& e) const {
 
 Eigen::VectorXd LinkageProblem::full_gradient() const {
   if (gradient_version_ != version_) {
-    if (!assembly_.matches(linkage_, free_position_)) assembly_ = LinkageAssembly(linkage_, free_position_);
+    if (!assembly_.matches(linkage_, free_position_))
+      assembly_ = LinkageAssembly(linkage_, free_position_);
     assembly_.gradient(linkage_, &segment_forces_, gradient_);
     gradient_ -= point_forces_;
     gradient_version_ = version_;
@@ -256,7 +286,8 @@ Eigen::VectorXd LinkageProblem::free_gradient() const {
 
 const Eigen::SparseMatrix<double>& LinkageProblem::free_hessian() {
   if (hessian_version_ == version_) return hessian_;
-  if (!assembly_.matches(linkage_, free_position_)) assembly_ = LinkageAssembly(linkage_, free_position_);
+  if (!assembly_.matches(linkage_, free_position_))
+    assembly_ = LinkageAssembly(linkage_, free_position_);
   assembly_.hessian(linkage_, &segment_forces_, hessian_, &gradient_);
   gradient_ -= point_forces_;
   gradient_version_ = hessian_version_ = version_;
@@ -327,7 +358,8 @@ void LinkageProblem::rebase(Eigen::VectorXd* free_velocity) {
     for (int j = 0; j < rod.num_edges(); ++j) {
       const int r = linkage_.reduced_index(s, rod.theta_dof(j));
       if (r < 0) continue;
-      const Eigen::Vector3d de = full_velocity[s].segment<3>(3 * (j + 1)) - full_velocity[s].segment<3>(3 * j);
+      const Eigen::Vector3d de =
+          full_velocity[s].segment<3>(3 * (j + 1)) - full_velocity[s].segment<3>(3 * j);
       v[r] += theta_rate_correction(rod.edge(j), de, old_sources[s][j], rod.source_frames()[j]);
     }
   }
@@ -341,7 +373,8 @@ void LinkageProblem::rebase(Eigen::VectorXd* free_velocity) {
 
 std::vector<Eigen::Vector3d> LinkageProblem::vertex_positions() const {
   std::vector<Eigen::Vector3d> out;
-  for (size_t v = 0; v < linkage_.graph().vertices.size(); ++v) out.push_back(linkage_.vertex_position(static_cast<int>(v)));
+  for (size_t v = 0; v < linkage_.graph().vertices.size(); ++v)
+    out.push_back(linkage_.vertex_position(static_cast<int>(v)));
   return out;
 }
 

@@ -14,7 +14,7 @@ namespace {
 
 struct Incidence {
   int segment;
-  int end;             // 0: the segment starts here, 1: it ends here
+  int end;               // 0: the segment starts here, 1: it ends here
   Eigen::Vector3d away;  // unit direction from the vertex into the segment
 };
 
@@ -34,7 +34,11 @@ void pair_segments(const std::vector<Incidence>& inc, std::vector<std::array<End
   for (int a = 0; a < n; ++a)
     for (int b = a + 1; b < n; ++b) {
       const double d = inc[a].away.dot(inc[b].away);
-      if (d < best) { best = d; best_a = a; best_b = b; }
+      if (d < best) {
+        best = d;
+        best_a = a;
+        best_b = b;
+      }
     }
   auto link = [&](int a, int b) {
     partner[inc[a].segment][inc[a].end] = {inc[b].segment, inc[b].end};
@@ -49,7 +53,8 @@ void pair_segments(const std::vector<Incidence>& inc, std::vector<std::array<End
   }
 }
 
-std::vector<RodChain> build_rods(int num_segments, const std::vector<std::array<EndRef, 2>>& partner,
+std::vector<RodChain> build_rods(int num_segments,
+                                 const std::vector<std::array<EndRef, 2>>& partner,
                                  std::vector<int>& rod_of_segment) {
   std::vector<RodChain> rods;
   rod_of_segment.assign(num_segments, -1);
@@ -60,7 +65,8 @@ std::vector<RodChain> build_rods(int num_segments, const std::vector<std::array<
     for (EndRef p = partner[s0][0]; p.valid();) {
       if (p.segment == s0) break;  // closed loop
       first = p.segment;
-      first_entry = 1 - p.end;  // we came into s0 through p.end, so the rod enters p at the other end
+      first_entry =
+          1 - p.end;  // we came into s0 through p.end, so the rod enters p at the other end
       p = partner[p.segment][first_entry];
     }
     RodChain chain;
@@ -79,8 +85,9 @@ std::vector<RodChain> build_rods(int num_segments, const std::vector<std::array<
   return rods;
 }
 
-Eigen::Vector3d best_fit_normal(const LineGraph& graph, const std::vector<std::vector<int>>& neighbours,
-                                int v, const Eigen::Vector3d& fallback_tangent) {
+Eigen::Vector3d best_fit_normal(const LineGraph& graph,
+                                const std::vector<std::vector<int>>& neighbours, int v,
+                                const Eigen::Vector3d& fallback_tangent) {
   std::vector<int> points = {v};
   for (int a : neighbours[v]) {
     points.push_back(a);
@@ -166,7 +173,8 @@ LinkageTopology build_topology(const LineGraph& graph) {
     if (joint.rod[0] == joint.rod[1] || label != 2)
       throw ModelError(vertex_name(v) + ": a rod passes through this joint twice");
     for (auto& t : tangent) t.normalize();
-    joint.collinear = tangent[0].cross(tangent[1]).norm() < std::sin(kCollinearDegrees * M_PI / 180.0);
+    joint.collinear =
+        tangent[0].cross(tangent[1]).norm() < std::sin(kCollinearDegrees * M_PI / 180.0);
     topo.joint_of_vertex[v] = static_cast<int>(topo.joints.size());
     topo.joints.push_back(std::move(joint));
     base_tangent.push_back(tangent);
@@ -177,7 +185,8 @@ LinkageTopology build_topology(const LineGraph& graph) {
   // nearest regular joints (sign-aligned), else from a best-fit plane.
   std::vector<Eigen::Vector3d> normal(nj);
   for (int j = 0; j < nj; ++j)
-    if (!topo.joints[j].collinear) normal[j] = base_tangent[j][0].cross(base_tangent[j][1]).normalized();
+    if (!topo.joints[j].collinear)
+      normal[j] = base_tangent[j][0].cross(base_tangent[j][1]).normalized();
   for (int j = 0; j < nj; ++j) {
     if (!topo.joints[j].collinear) continue;
     const int v0 = topo.joints[j].vertex;
@@ -197,10 +206,14 @@ LinkageTopology build_topology(const LineGraph& graph) {
         continue;
       }
       for (int w : neighbours[v])
-        if (distance[w] < 0) { distance[w] = distance[v] + 1; queue.push_back(w); }
+        if (distance[w] < 0) {
+          distance[w] = distance[v] + 1;
+          queue.push_back(w);
+        }
     }
     const Eigen::Vector3d t = base_tangent[j][0];
-    normal[j] = (found_at >= 0 && sum.norm() > 1e-8) ? sum.normalized() : best_fit_normal(graph, neighbours, v0, t);
+    normal[j] = (found_at >= 0 && sum.norm() > 1e-8) ? sum.normalized()
+                                                     : best_fit_normal(graph, neighbours, v0, t);
     // The rods at a collinear joint must lie in its plane: a normal along
     // them is no normal.
     if (std::abs(normal[j].dot(t)) > 0.99) normal[j] = best_fit_normal(graph, neighbours, v0, t);
@@ -211,7 +224,10 @@ LinkageTopology build_topology(const LineGraph& graph) {
   std::vector<std::vector<int>> joint_neighbours(nj);
   for (const auto& seg : topo.segments) {
     const int a = topo.joint_of_vertex[seg.vertex[0]], b = topo.joint_of_vertex[seg.vertex[1]];
-    if (a >= 0 && b >= 0) { joint_neighbours[a].push_back(b); joint_neighbours[b].push_back(a); }
+    if (a >= 0 && b >= 0) {
+      joint_neighbours[a].push_back(b);
+      joint_neighbours[b].push_back(a);
+    }
   }
   std::vector<bool> oriented(nj, false);
   for (int root = 0; root < nj; ++root) {
@@ -236,8 +252,9 @@ LinkageTopology build_topology(const LineGraph& graph) {
   for (int j = 0; j < nj; ++j)
     for (int k : joint_neighbours[j])
       if (normal[j].dot(normal[k]) < -0.5)
-        throw ModelError(vertex_name(topo.joints[j].vertex) + " and " + vertex_name(topo.joints[k].vertex) +
-                         ": the joint normals cannot be oriented consistently (non-orientable linkage)");
+        throw ModelError(
+            vertex_name(topo.joints[j].vertex) + " and " + vertex_name(topo.joints[k].vertex) +
+            ": the joint normals cannot be oriented consistently (non-orientable linkage)");
 
   // Directions of the rods, breadth first through the regular joints. At a
   // joint with rods r, q and base tangents tr, tq, s = sign((tr x tq) . n).
@@ -264,7 +281,8 @@ LinkageTopology build_topology(const LineGraph& graph) {
         const int slot_r = joint.rod[0] == r ? 0 : 1;
         const int q = joint.rod[1 - slot_r];
         if (family[q] >= 0) continue;
-        const double triple = base_tangent[j][slot_r].cross(base_tangent[j][1 - slot_r]).dot(normal[j]);
+        const double triple =
+            base_tangent[j][slot_r].cross(base_tangent[j][1 - slot_r]).dot(normal[j]);
         const int s = triple > 0.0 ? 1 : -1;
         family[q] = 1 - family[r];
         direction[q] = (family[r] == 0 ? 1 : -1) * direction[r] * s;

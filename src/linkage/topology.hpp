@@ -64,7 +64,7 @@ struct SegmentTopology {
   std::array<int, 2> label = {-1, -1};   // 0 (A) or 1 (B) at that joint
   std::array<int, 2> sign = {1, 1};      // SegmentEnd::sign at start and end
   int rod = -1;
-  double length = 0.0;                   // graph edge length
+  double length = 0.0;  // graph edge length
 };
 
 struct RodChain {
@@ -73,9 +73,9 @@ struct RodChain {
 };
 
 struct LinkageTopology {
-  std::vector<int> valence;         // per vertex
-  std::vector<int> joint_of_vertex; // per vertex, -1 for free ends
-  std::vector<JointTopology> joints;  // in vertex order
+  std::vector<int> valence;               // per vertex
+  std::vector<int> joint_of_vertex;       // per vertex, -1 for free ends
+  std::vector<JointTopology> joints;      // in vertex order
   std::vector<SegmentTopology> segments;  // in edge order
   std::vector<RodChain> rods;
 };

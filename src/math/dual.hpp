@@ -42,13 +42,33 @@ struct Dual {
     return d;
   }
 
-  Dual& operator+=(const Dual& o) { v += o.v; g += o.g; h += o.h; return *this; }
-  Dual& operator-=(const Dual& o) { v -= o.v; g -= o.g; h -= o.h; return *this; }
-  Dual& operator*=(const Dual& o) { *this = *this * o; return *this; }
-  Dual& operator/=(const Dual& o) { *this = *this / o; return *this; }
+  Dual& operator+=(const Dual& o) {
+    v += o.v;
+    g += o.g;
+    h += o.h;
+    return *this;
+  }
+  Dual& operator-=(const Dual& o) {
+    v -= o.v;
+    g -= o.g;
+    h -= o.h;
+    return *this;
+  }
+  Dual& operator*=(const Dual& o) {
+    *this = *this * o;
+    return *this;
+  }
+  Dual& operator/=(const Dual& o) {
+    *this = *this / o;
+    return *this;
+  }
 
   friend Dual operator-(const Dual& a) {
-    Dual r; r.v = -a.v; r.g = -a.g; r.h = -a.h; return r;
+    Dual r;
+    r.v = -a.v;
+    r.g = -a.g;
+    r.h = -a.h;
+    return r;
   }
   friend Dual operator+(Dual a, const Dual& b) { return a += b; }
   friend Dual operator-(Dual a, const Dual& b) { return a -= b; }
@@ -63,11 +83,29 @@ struct Dual {
   }
   friend Dual operator/(const Dual& a, const Dual& b) { return a * reciprocal(b); }
 
-  friend Dual operator+(Dual a, double b) { a.v += b; return a; }
-  friend Dual operator+(double b, Dual a) { a.v += b; return a; }
-  friend Dual operator-(Dual a, double b) { a.v -= b; return a; }
-  friend Dual operator-(double b, const Dual& a) { Dual r = -a; r.v += b; return r; }
-  friend Dual operator*(Dual a, double b) { a.v *= b; a.g *= b; a.h *= b; return a; }
+  friend Dual operator+(Dual a, double b) {
+    a.v += b;
+    return a;
+  }
+  friend Dual operator+(double b, Dual a) {
+    a.v += b;
+    return a;
+  }
+  friend Dual operator-(Dual a, double b) {
+    a.v -= b;
+    return a;
+  }
+  friend Dual operator-(double b, const Dual& a) {
+    Dual r = -a;
+    r.v += b;
+    return r;
+  }
+  friend Dual operator*(Dual a, double b) {
+    a.v *= b;
+    a.g *= b;
+    a.h *= b;
+    return a;
+  }
   friend Dual operator*(double b, Dual a) { return a * b; }
   friend Dual operator/(Dual a, double b) { return a * (1.0 / b); }
   friend Dual operator/(double b, const Dual& a) { return b * reciprocal(a); }
@@ -120,6 +158,8 @@ struct Dual {
 // Value of a plain or dual scalar.
 inline double value(double x) { return x; }
 template <int N>
-double value(const Dual<N>& x) { return x.v; }
+double value(const Dual<N>& x) {
+  return x.v;
+}
 
 }  // namespace xshell

@@ -14,7 +14,6 @@
 #include "dual.hpp"
 #include "inlining.hpp"
 
-
 namespace xshell {
 
 template <int N>
@@ -34,13 +33,30 @@ struct Dual1 {
     return d;
   }
 
-  XSHELL_DUAL_INLINE Dual1& operator+=(const Dual1& o) { v += o.v; g += o.g; return *this; }
-  XSHELL_DUAL_INLINE Dual1& operator-=(const Dual1& o) { v -= o.v; g -= o.g; return *this; }
-  XSHELL_DUAL_INLINE Dual1& operator*=(const Dual1& o) { *this = *this * o; return *this; }
-  XSHELL_DUAL_INLINE Dual1& operator/=(const Dual1& o) { *this = *this / o; return *this; }
+  XSHELL_DUAL_INLINE Dual1& operator+=(const Dual1& o) {
+    v += o.v;
+    g += o.g;
+    return *this;
+  }
+  XSHELL_DUAL_INLINE Dual1& operator-=(const Dual1& o) {
+    v -= o.v;
+    g -= o.g;
+    return *this;
+  }
+  XSHELL_DUAL_INLINE Dual1& operator*=(const Dual1& o) {
+    *this = *this * o;
+    return *this;
+  }
+  XSHELL_DUAL_INLINE Dual1& operator/=(const Dual1& o) {
+    *this = *this / o;
+    return *this;
+  }
 
   XSHELL_DUAL_INLINE friend Dual1 operator-(const Dual1& a) {
-    Dual1 r; r.v = -a.v; r.g = -a.g; return r;
+    Dual1 r;
+    r.v = -a.v;
+    r.g = -a.g;
+    return r;
   }
   XSHELL_DUAL_INLINE friend Dual1 operator+(Dual1 a, const Dual1& b) { return a += b; }
   XSHELL_DUAL_INLINE friend Dual1 operator-(Dual1 a, const Dual1& b) { return a -= b; }
@@ -58,11 +74,28 @@ struct Dual1 {
     return r;
   }
 
-  XSHELL_DUAL_INLINE friend Dual1 operator+(Dual1 a, double b) { a.v += b; return a; }
-  XSHELL_DUAL_INLINE friend Dual1 operator+(double b, Dual1 a) { a.v += b; return a; }
-  XSHELL_DUAL_INLINE friend Dual1 operator-(Dual1 a, double b) { a.v -= b; return a; }
-  XSHELL_DUAL_INLINE friend Dual1 operator-(double b, const Dual1& a) { Dual1 r = -a; r.v += b; return r; }
-  XSHELL_DUAL_INLINE friend Dual1 operator*(Dual1 a, double b) { a.v *= b; a.g *= b; return a; }
+  XSHELL_DUAL_INLINE friend Dual1 operator+(Dual1 a, double b) {
+    a.v += b;
+    return a;
+  }
+  XSHELL_DUAL_INLINE friend Dual1 operator+(double b, Dual1 a) {
+    a.v += b;
+    return a;
+  }
+  XSHELL_DUAL_INLINE friend Dual1 operator-(Dual1 a, double b) {
+    a.v -= b;
+    return a;
+  }
+  XSHELL_DUAL_INLINE friend Dual1 operator-(double b, const Dual1& a) {
+    Dual1 r = -a;
+    r.v += b;
+    return r;
+  }
+  XSHELL_DUAL_INLINE friend Dual1 operator*(Dual1 a, double b) {
+    a.v *= b;
+    a.g *= b;
+    return a;
+  }
   XSHELL_DUAL_INLINE friend Dual1 operator*(double b, Dual1 a) { return a * b; }
   XSHELL_DUAL_INLINE friend Dual1 operator/(Dual1 a, double b) { return a * (1.0 / b); }
   XSHELL_DUAL_INLINE friend Dual1 operator/(double b, const Dual1& a) {
@@ -87,8 +120,12 @@ struct Dual1 {
     const double s = std::sqrt(a.v);
     return chain(a, s, 0.5 / s);
   }
-  XSHELL_DUAL_INLINE friend Dual1 sin(const Dual1& a) { return chain(a, std::sin(a.v), std::cos(a.v)); }
-  XSHELL_DUAL_INLINE friend Dual1 cos(const Dual1& a) { return chain(a, std::cos(a.v), -std::sin(a.v)); }
+  XSHELL_DUAL_INLINE friend Dual1 sin(const Dual1& a) {
+    return chain(a, std::sin(a.v), std::cos(a.v));
+  }
+  XSHELL_DUAL_INLINE friend Dual1 cos(const Dual1& a) {
+    return chain(a, std::cos(a.v), -std::sin(a.v));
+  }
   // atan2(y, x): d/dy = x/r2, d/dx = -y/r2.
   XSHELL_DUAL_INLINE friend Dual1 atan2(const Dual1& y, const Dual1& x) {
     const double r2 = x.v * x.v + y.v * y.v;
@@ -100,6 +137,8 @@ struct Dual1 {
 };
 
 template <int N>
-double value(const Dual1<N>& x) { return x.v; }
+double value(const Dual1<N>& x) {
+  return x.v;
+}
 
 }  // namespace xshell

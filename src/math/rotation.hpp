@@ -54,7 +54,8 @@ V3<T> rotate(const V3<T>& w, const V3<T>& v) {
 inline Eigen::Matrix3d rotation_matrix(const Eigen::Vector3d& w) {
   Eigen::Matrix3d r;
   for (int k = 0; k < 3; ++k) {
-    r.col(k) = rotate(V3<double>(w), V3<double>(Eigen::Vector3d(Eigen::Vector3d::Unit(k)))).values();
+    r.col(k) =
+        rotate(V3<double>(w), V3<double>(Eigen::Vector3d(Eigen::Vector3d::Unit(k)))).values();
   }
   return r;
 }
@@ -96,7 +97,8 @@ inline Eigen::Matrix3d left_jacobian(const Eigen::Vector3d& w) {
 
 // Any unit vector orthogonal to the unit vector t.
 inline Eigen::Vector3d any_perpendicular(const Eigen::Vector3d& t) {
-  Eigen::Vector3d trial = std::abs(t.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  Eigen::Vector3d trial =
+      std::abs(t.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   return (trial - trial.dot(t) * t).normalized();
 }
 

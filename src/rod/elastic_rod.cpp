@@ -33,8 +33,9 @@ ElasticRod::ElasticRod(const std::vector<Eigen::Vector3d>& nodes, const RodStiff
     : ElasticRod(nodes, twist_free_frames(nodes, first_d1),
                  std::vector<double>(nodes.size() - 1, 0.0), stiffness) {}
 
-ElasticRod::ElasticRod(const std::vector<Eigen::Vector3d>& nodes, std::vector<SourceFrame> source_frames,
-                       const std::vector<double>& thetas, const RodStiffness& stiffness)
+ElasticRod::ElasticRod(const std::vector<Eigen::Vector3d>& nodes,
+                       std::vector<SourceFrame> source_frames, const std::vector<double>& thetas,
+                       const RodStiffness& stiffness)
     : stiffness_(stiffness), nodes_(nodes), thetas_(thetas), source_(std::move(source_frames)) {
   if (nodes_.size() < 2) throw std::invalid_argument("ElasticRod: needs at least two nodes");
   if (thetas_.size() != nodes_.size() - 1 || source_.size() != thetas_.size())
@@ -64,7 +65,8 @@ void ElasticRod::update_reference_frames() {
     reference_[j] = xshell::reference_frame(V3<double>(tangent(j)), source_[j]);
   for (int i = 1; i < num_edges(); ++i) {
     const V3<double> t0(tangent(i - 1)), t1(tangent(i));
-    const double angle = signed_angle(parallel_transport(t0, t1, reference_[i - 1].d1), reference_[i].d1, t1);
+    const double angle =
+        signed_angle(parallel_transport(t0, t1, reference_[i - 1].d1), reference_[i].d1, t1);
     reference_twist_[i] = unwrap_towards(angle, twist_hint_[i]);
   }
 }
@@ -96,8 +98,10 @@ Frame<double> ElasticRod::material_frame(int j) const {
   return xshell::material_frame(reference_[j], thetas_[j]);
 }
 
-void ElasticRod::restore(const std::vector<Eigen::Vector3d>& nodes, const std::vector<double>& thetas,
-                         const std::vector<SourceFrame>& source_frames, const std::vector<double>& twist_hints) {
+void ElasticRod::restore(const std::vector<Eigen::Vector3d>& nodes,
+                         const std::vector<double>& thetas,
+                         const std::vector<SourceFrame>& source_frames,
+                         const std::vector<double>& twist_hints) {
   if (nodes.size() != nodes_.size() || thetas.size() != thetas_.size() ||
       source_frames.size() != source_.size() || twist_hints.size() != twist_hint_.size())
     throw std::invalid_argument("ElasticRod::restore: size mismatch");
@@ -164,7 +168,8 @@ VertexStrains<double> ElasticRod::strains(int i) const {
 RodEnergy ElasticRod::energy() const {
   RodEnergy e;
   for (int j = 0; j < num_edges(); ++j)
-    e.stretching += stretching_energy(edge(j), rest_length_[j], stiffness_.stretching * stretching_share_[j]);
+    e.stretching +=
+        stretching_energy(edge(j), rest_length_[j], stiffness_.stretching * stretching_share_[j]);
   for (int i = 1; i < num_edges(); ++i) {
     const VertexEnergy<double> v = vertex_energy(stencil_dofs(i), stencil(i));
     e.bending += v.bending;
@@ -179,7 +184,8 @@ void ElasticRod::energy_per_element(std::vector<double>& stretching, std::vector
   bending.assign(num_nodes(), 0.0);
   twisting.assign(num_nodes(), 0.0);
   for (int j = 0; j < num_edges(); ++j)
-    stretching[j] = stretching_energy(edge(j), rest_length_[j], stiffness_.stretching * stretching_share_[j]);
+    stretching[j] =
+        stretching_energy(edge(j), rest_length_[j], stiffness_.stretching * stretching_share_[j]);
   for (int i = 1; i < num_edges(); ++i) {
     const VertexEnergy<double> v = vertex_energy(stencil_dofs(i), stencil(i));
     bending[i] = v.bending;
@@ -209,7 +215,8 @@ void ElasticRod::add_gradient(Eigen::Ref<Eigen::VectorXd> g) const {
   }
 }
 
-void ElasticRod::add_gradient_and_hessian(Eigen::Ref<Eigen::VectorXd> g, Eigen::Ref<Eigen::MatrixXd> hessian) const {
+void ElasticRod::add_gradient_and_hessian(Eigen::Ref<Eigen::VectorXd> g,
+                                          Eigen::Ref<Eigen::MatrixXd> hessian) const {
   for (int j = 0; j < num_edges(); ++j) {
     const double k = stiffness_.stretching * stretching_share_[j];
     const Eigen::Vector3d e = edge(j);

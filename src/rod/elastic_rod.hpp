@@ -33,7 +33,9 @@ struct RodEnergy {
   double stretching = 0.0, bending = 0.0, twisting = 0.0;
   double total() const { return stretching + bending + twisting; }
   RodEnergy& operator+=(const RodEnergy& o) {
-    stretching += o.stretching; bending += o.bending; twisting += o.twisting;
+    stretching += o.stretching;
+    bending += o.bending;
+    twisting += o.twisting;
     return *this;
   }
 };
@@ -59,7 +61,8 @@ class ElasticRod {
   // Configuration.
   const std::vector<Eigen::Vector3d>& nodes() const { return nodes_; }
   const std::vector<double>& thetas() const { return thetas_; }
-  void set_configuration(const std::vector<Eigen::Vector3d>& nodes, const std::vector<double>& thetas);
+  void set_configuration(const std::vector<Eigen::Vector3d>& nodes,
+                         const std::vector<double>& thetas);
   Eigen::VectorXd dofs() const;
   void set_dofs(const Eigen::VectorXd& dofs);
 
@@ -76,7 +79,8 @@ class ElasticRod {
   const std::vector<double>& twist_hints() const { return twist_hint_; }
   // Restores a saved configuration with its source frames and twist hints.
   void restore(const std::vector<Eigen::Vector3d>& nodes, const std::vector<double>& thetas,
-               const std::vector<SourceFrame>& source_frames, const std::vector<double>& twist_hints);
+               const std::vector<SourceFrame>& source_frames,
+               const std::vector<double>& twist_hints);
   // Moves every source frame to the current reference frame: nothing about
   // the configuration or the energy changes.
   void update_source_frames();
@@ -145,7 +149,7 @@ class ElasticRod {
   std::vector<double> rest_length_;
   std::vector<double> stretching_share_;
   std::vector<std::array<std::array<double, 2>, 2>> rest_kappa_;  // per node, [edge side][k1, k2]
-  std::vector<double> rest_twist_;                               // per node
+  std::vector<double> rest_twist_;                                // per node
 };
 
 }  // namespace xshell

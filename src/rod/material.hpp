@@ -28,18 +28,18 @@ struct Material {
   double poisson_ratio = 0.3;  // nu, in (-1, 0.5)
   double density = 0.0;        // mass per volume
   CrossSection section;
-  double strength = 0.0;       // allowable stress for utilisation reports; 0: none
+  double strength = 0.0;  // allowable stress for utilisation reports; 0: none
 };
 
 struct RodStiffness {
-  double stretching = 0.0;  // EA
-  double bending1 = 0.0;    // B1: E I about the d2 axis (for kappa_1)
-  double bending2 = 0.0;    // B2: E I about the d1 axis (for kappa_2)
-  double twisting = 0.0;    // GJ, G = E / (2 (1 + nu))
-  double area = 0.0;        // A
-  double mass_per_length = 0.0;  // density * A
+  double stretching = 0.0;                     // EA
+  double bending1 = 0.0;                       // B1: E I about the d2 axis (for kappa_1)
+  double bending2 = 0.0;                       // B2: E I about the d1 axis (for kappa_2)
+  double twisting = 0.0;                       // GJ, G = E / (2 (1 + nu))
+  double area = 0.0;                           // A
+  double mass_per_length = 0.0;                // density * A
   double rotational_inertia_per_length = 0.0;  // density * (I_d1 + I_d2)
-  double polar_moment = 0.0;  // I_d1 + I_d2 (length^4)
+  double polar_moment = 0.0;                   // I_d1 + I_d2 (length^4)
 };
 
 // Section properties:

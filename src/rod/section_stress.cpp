@@ -35,7 +35,8 @@ SectionStresses section_stresses(const SectionModuli& m, const SectionForces& f)
   s.bending1 = std::abs(f.moment1) * m.c1 / m.i_d2;
   s.bending2 = std::abs(f.moment2) * m.c2 / m.i_d1;
   s.torsional_shear = std::abs(f.torque) / m.torsion_modulus;
-  const double bending = m.shape == SectionShape::Rectangle ? s.bending1 + s.bending2 : std::hypot(s.bending1, s.bending2);
+  const double bending = m.shape == SectionShape::Rectangle ? s.bending1 + s.bending2
+                                                            : std::hypot(s.bending1, s.bending2);
   s.max_normal = std::abs(s.axial) + bending;
   return s;
 }

@@ -25,10 +25,10 @@ namespace xshell {
 
 struct SectionModuli {
   SectionShape shape = SectionShape::Rectangle;
-  double area = 0.0;               // A
-  double i_d2 = 0.0, c1 = 0.0;     // second moment about d2, largest distance along d1
-  double i_d1 = 0.0, c2 = 0.0;     // second moment about d1, largest distance along d2
-  double torsion_modulus = 0.0;    // W_t: tau_max = T / W_t
+  double area = 0.0;             // A
+  double i_d2 = 0.0, c1 = 0.0;   // second moment about d2, largest distance along d1
+  double i_d1 = 0.0, c2 = 0.0;   // second moment about d1, largest distance along d2
+  double torsion_modulus = 0.0;  // W_t: tau_max = T / W_t
 };
 SectionModuli section_moduli(const CrossSection& section);
 

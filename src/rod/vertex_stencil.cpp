@@ -49,19 +49,26 @@ VertexEnergy<double> vertex_energy_derivatives(const VertexDofs& q, const Vertex
   return {e.bending.v, e.twisting.v};
 }
 
-XSHELL_FLATTEN VertexEnergy<double> vertex_energy_gradient(const VertexDofs& q, const VertexStencil& s, VertexGradient& gradient) {
+XSHELL_FLATTEN VertexEnergy<double> vertex_energy_gradient(const VertexDofs& q,
+                                                           const VertexStencil& s,
+                                                           VertexGradient& gradient) {
   const V3<double> x0(q[0], q[1], q[2]), x1(q[3], q[4], q[5]), x2(q[6], q[7], q[8]);
   const VertexEdgeGradient<double> d = vertex_edge_gradient(x1 - x0, x2 - x1, q[9], q[10], s);
   scatter_gradient(d, gradient);
   return {d.bending, d.twisting};
 }
 
-XSHELL_FLATTEN VertexEnergy<double> vertex_energy_hessian(const VertexDofs& q, const VertexStencil& s, VertexGradient& gradient,
-                                           VertexHessian& hessian) {
+XSHELL_FLATTEN VertexEnergy<double> vertex_energy_hessian(const VertexDofs& q,
+                                                          const VertexStencil& s,
+                                                          VertexGradient& gradient,
+                                                          VertexHessian& hessian) {
   using D = Dual1<8>;
-  const V3<D> e0(D::variable(0, q[3] - q[0]), D::variable(1, q[4] - q[1]), D::variable(2, q[5] - q[2]));
-  const V3<D> e1(D::variable(3, q[6] - q[3]), D::variable(4, q[7] - q[4]), D::variable(5, q[8] - q[5]));
-  const VertexEdgeGradient<D> d = vertex_edge_gradient(e0, e1, D::variable(6, q[9]), D::variable(7, q[10]), s);
+  const V3<D> e0(D::variable(0, q[3] - q[0]), D::variable(1, q[4] - q[1]),
+                 D::variable(2, q[5] - q[2]));
+  const V3<D> e1(D::variable(3, q[6] - q[3]), D::variable(4, q[7] - q[4]),
+                 D::variable(5, q[8] - q[5]));
+  const VertexEdgeGradient<D> d =
+      vertex_edge_gradient(e0, e1, D::variable(6, q[9]), D::variable(7, q[10]), s);
   scatter_gradient(d, gradient);
   Eigen::Matrix<double, 8, 8> h;
   h.row(0) = d.e[0].x.g.transpose();
@@ -74,7 +81,8 @@ XSHELL_FLATTEN VertexEnergy<double> vertex_energy_hessian(const VertexDofs& q, c
   h.row(7) = d.theta[1].g.transpose();
   const Eigen::Matrix<double, 8, 8> sym = 0.5 * (h + h.transpose());
   // e0 = x1 - x0, e1 = x2 - x1: H_q = M^T sym M, written out by blocks.
-  const Eigen::Matrix3d a = sym.block<3, 3>(0, 0), b = sym.block<3, 3>(0, 3), c = sym.block<3, 3>(3, 3);
+  const Eigen::Matrix3d a = sym.block<3, 3>(0, 0), b = sym.block<3, 3>(0, 3),
+                        c = sym.block<3, 3>(3, 3);
   const Eigen::Matrix<double, 3, 2> ta = sym.block<3, 2>(0, 6), tb = sym.block<3, 2>(3, 6);
   hessian.block<3, 3>(0, 0) = a;
   hessian.block<3, 3>(0, 3) = b - a;

@@ -34,11 +34,11 @@
 namespace xshell {
 
 struct VertexStencil {
-  SourceFrame source[2];          // source frames of edges i-1 and i
-  double rest_kappa[2][2] = {};   // [edge j][kappa1, kappa2] at rest
-  double rest_twist = 0.0;        // m_rest
-  double twist_hint = 0.0;        // reference twist at the last update
-  double voronoi_length = 1.0;    // V
+  SourceFrame source[2];                                  // source frames of edges i-1 and i
+  double rest_kappa[2][2] = {};                           // [edge j][kappa1, kappa2] at rest
+  double rest_twist = 0.0;                                // m_rest
+  double twist_hint = 0.0;                                // reference twist at the last update
+  double voronoi_length = 1.0;                            // V
   double bending1 = 0.0, bending2 = 0.0, twisting = 0.0;  // B1, B2, GJ
 };
 
@@ -129,8 +129,8 @@ VertexEnergy<T> vertex_energy(const VertexStrains<T>& k, const VertexStencil& s)
 // theta1) it gives the exact Hessian as the Jacobian of this gradient.
 template <class T>
 struct VertexEdgeGradient {
-  V3<T> e[2];       // dE/de_0, dE/de_1
-  T theta[2];       // dE/dtheta_0, dE/dtheta_1
+  V3<T> e[2];           // dE/de_0, dE/de_1
+  T theta[2];           // dE/dtheta_0, dE/dtheta_1
   T bending, twisting;  // energies
 };
 
@@ -148,7 +148,8 @@ void transported_frame(const V3<T>& t, const SourceFrame& source, Frame<T>& ref,
   const V3<T> c(t.z * a[1] - t.y * a[2], t.x * a[2] - t.z * a[0], t.y * a[0] - t.x * a[1]);
   const T inv = 1.0 / (1.0 + d);
   const T k = (c.x * v[0] + c.y * v[1] + c.z * v[2]) * inv;
-  ref.d1 = V3<T>(d * v[0] + (c.y * v[2] - c.z * v[1]) + k * c.x, d * v[1] + (c.z * v[0] - c.x * v[2]) + k * c.y,
+  ref.d1 = V3<T>(d * v[0] + (c.y * v[2] - c.z * v[1]) + k * c.x,
+                 d * v[1] + (c.z * v[0] - c.x * v[2]) + k * c.y,
                  d * v[2] + (c.x * v[1] - c.y * v[0]) + k * c.z);
   ref.d2 = cross(t, ref.d1);
   kh = c * (2.0 * inv);
@@ -156,7 +157,8 @@ void transported_frame(const V3<T>& t, const SourceFrame& source, Frame<T>& ref,
 
 inline double reference_twist(const V3<double> t[2], const Frame<double> ref[2], const V3<double>&,
                               const V3<double>[2], const double[2], double hint) {
-  return unwrap_towards(signed_angle(parallel_transport(t[0], t[1], ref[0].d1), ref[1].d1, t[1]), hint);
+  return unwrap_towards(signed_angle(parallel_transport(t[0], t[1], ref[0].d1), ref[1].d1, t[1]),
+                        hint);
 }
 
 // The reference twist as a Dual1 over (e0, e1, theta0, theta1): its value in
@@ -165,8 +167,9 @@ inline double reference_twist(const V3<double> t[2], const Frame<double> ref[2],
 //   dm_ref/de_1 = (I - t1 t1^T)(kb - kh_1) / (2 |e1|),
 // which is all the Jacobian of the gradient needs from it.
 template <int N>
-Dual1<N> reference_twist(const V3<Dual1<N>> t[2], const Frame<Dual1<N>> ref[2], const V3<Dual1<N>>& kb,
-                         const V3<Dual1<N>> kh[2], const Dual1<N> l[2], double hint) {
+Dual1<N> reference_twist(const V3<Dual1<N>> t[2], const Frame<Dual1<N>> ref[2],
+                         const V3<Dual1<N>>& kb, const V3<Dual1<N>> kh[2], const Dual1<N> l[2],
+                         double hint) {
   static_assert(N >= 6, "the first six seeds are e0 and e1");
   const V3<double> tv[2] = {V3<double>(t[0].values()), V3<double>(t[1].values())};
   const Frame<double> rv[2] = {{V3<double>(ref[0].d1.values()), V3<double>(ref[0].d2.values())},
@@ -183,8 +186,8 @@ Dual1<N> reference_twist(const V3<Dual1<N>> t[2], const Frame<Dual1<N>> ref[2], 
 }  // namespace detail
 
 template <class T>
-VertexEdgeGradient<T> vertex_edge_gradient(const V3<T>& e0, const V3<T>& e1, const T& theta0, const T& theta1,
-                                           const VertexStencil& s) {
+VertexEdgeGradient<T> vertex_edge_gradient(const V3<T>& e0, const V3<T>& e1, const T& theta0,
+                                           const T& theta1, const VertexStencil& s) {
   const T l[2] = {norm(e0), norm(e1)};
   const V3<T> t[2] = {e0 / l[0], e1 / l[1]};
   const T chi = 1.0 + dot(t[0], t[1]);
@@ -193,7 +196,8 @@ VertexEdgeGradient<T> vertex_edge_gradient(const V3<T>& e0, const V3<T>& e1, con
   V3<T> kh[2];
   for (int j = 0; j < 2; ++j) detail::transported_frame(t[j], s.source[j], ref[j], kh[j]);
   const T theta[2] = {theta0, theta1};
-  const T dm = theta1 - theta0 + detail::reference_twist(t, ref, kb, kh, l, s.twist_hint) - s.rest_twist;
+  const T dm =
+      theta1 - theta0 + detail::reference_twist(t, ref, kb, kh, l, s.twist_hint) - s.rest_twist;
   const double c = 0.5 / s.voronoi_length;
   const T h = (s.twisting / s.voronoi_length) * dm;
 
@@ -238,13 +242,14 @@ VertexEnergy<double> vertex_energy_derivatives(const VertexDofs& q, const Vertex
 
 // The same gradient from the closed form (vertex_edge_gradient), in plain
 // doubles; returns the energies.
-VertexEnergy<double> vertex_energy_gradient(const VertexDofs& q, const VertexStencil& s, VertexGradient& gradient);
+VertexEnergy<double> vertex_energy_gradient(const VertexDofs& q, const VertexStencil& s,
+                                            VertexGradient& gradient);
 
 // The same gradient and Hessian: the Hessian is the Jacobian of the closed-form
 // gradient by first-order forward AD over (e0, e1, theta0, theta1)
 // (Dual1<8>), symmetrized; equal to vertex_energy_derivatives to round-off
 // at ~1/20 of its cost.
-VertexEnergy<double> vertex_energy_hessian(const VertexDofs& q, const VertexStencil& s, VertexGradient& gradient,
-                                           VertexHessian& hessian);
+VertexEnergy<double> vertex_energy_hessian(const VertexDofs& q, const VertexStencil& s,
+                                           VertexGradient& gradient, VertexHessian& hessian);
 
 }  // namespace xshell

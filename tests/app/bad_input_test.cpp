@@ -9,12 +9,12 @@
 
 namespace xshell::test {
 
-
 namespace {
 
 // A rejected run: status 2, one line naming what is wrong (every word of
 // `words`), and no output directory.
-void check_rejected(const CommandResult& r, const fs::path& dir, const std::vector<std::string>& words) {
+void check_rejected(const CommandResult& r, const fs::path& dir,
+                    const std::vector<std::string>& words) {
   INFO("stderr: " << r.errors);
   CHECK(r.status == 2);
   CHECK(r.errors.rfind("xshell: error: ", 0) == 0);
@@ -31,7 +31,8 @@ CommandResult relax_obj(const Scratch& dir, const std::string& text) {
 }
 
 // Relaxes the configuration `text` (as run.json).
-CommandResult relax_config(const Scratch& dir, const std::string& text, const std::string& options = "") {
+CommandResult relax_config(const Scratch& dir, const std::string& text,
+                           const std::string& options = "") {
   write_text(dir / "run.json", text);
   return run_xshell("relax run.json " + options, dir.path());
 }
@@ -40,7 +41,8 @@ CommandResult relax_config(const Scratch& dir, const std::string& text, const st
 std::string grid_config(const std::string& extra = "") { return config_with(grid_obj(), extra); }
 
 // grid_config() with the first `from` replaced by `to` (which must be there).
-std::string grid_config_replacing(const std::string& from, const std::string& to, const std::string& extra = "") {
+std::string grid_config_replacing(const std::string& from, const std::string& to,
+                                  const std::string& extra = "") {
   std::string text = grid_config(extra);
   const std::size_t at = text.find(from);
   REQUIRE(at != std::string::npos);
@@ -57,22 +59,26 @@ const char* const kCross =  // one X joint (vertex 2), four free ends
 
 TEST_CASE("bad input: OBJ unknown statement") {
   Scratch dir("obj-statement");
-  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1 2\np 1\n"), dir.path(), {"bad.obj:4: ", "unknown statement 'p'"});
+  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1 2\np 1\n"), dir.path(),
+                 {"bad.obj:4: ", "unknown statement 'p'"});
 }
 
 TEST_CASE("bad input: OBJ faces") {
   Scratch dir("obj-face");
-  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), dir.path(), {"bad.obj:4: ", "faces ('f')"});
+  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), dir.path(),
+                 {"bad.obj:4: ", "faces ('f')"});
 }
 
 TEST_CASE("bad input: OBJ coordinate that is not a number") {
   Scratch dir("obj-nan-text");
-  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 x 0\nl 1 2\n"), dir.path(), {"bad.obj:2: ", "'x'", "not a number"});
+  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 x 0\nl 1 2\n"), dir.path(),
+                 {"bad.obj:2: ", "'x'", "not a number"});
 }
 
 TEST_CASE("bad input: OBJ NaN and infinite coordinates") {
   int checked = 0;
-  for (const std::string value : {"nan", "NaN", "-nan", "inf", "-inf", "Infinity", "1e999", "-1e400"}) {
+  for (const std::string value :
+       {"nan", "NaN", "-nan", "inf", "-inf", "Infinity", "1e999", "-1e400"}) {
     CAPTURE(value);
     Scratch dir("obj-nonfinite");
     const CommandResult r = relax_obj(dir, "v 0 0 0\nv 1 0 0\nv 1 " + value + " 0\nl 1 2\nl 2 3\n");
@@ -85,35 +91,42 @@ TEST_CASE("bad input: OBJ NaN and infinite coordinates") {
 
 TEST_CASE("bad input: OBJ vertex with too few or too many coordinates") {
   Scratch dir("obj-coordinates");
-  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0\nl 1 2\n"), dir.path(), {"bad.obj:2: ", "needs three"});
-  check_rejected(relax_obj(dir, "v 0 0 0 1 2\nv 1 0 0\nl 1 2\n"), dir.path(), {"bad.obj:1: ", "5 coordinates"});
+  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0\nl 1 2\n"), dir.path(),
+                 {"bad.obj:2: ", "needs three"});
+  check_rejected(relax_obj(dir, "v 0 0 0 1 2\nv 1 0 0\nl 1 2\n"), dir.path(),
+                 {"bad.obj:1: ", "5 coordinates"});
 }
 
 TEST_CASE("bad input: OBJ index 0") {
   Scratch dir("obj-index0");
-  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 0 1\n"), dir.path(), {"bad.obj:3: ", "index 0", "start at 1"});
+  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 0 1\n"), dir.path(),
+                 {"bad.obj:3: ", "index 0", "start at 1"});
 }
 
 TEST_CASE("bad input: OBJ index out of range") {
   Scratch dir("obj-index-range");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1 3\n"), dir.path(),
                  {"bad.obj:3: ", "vertex index 3 is out of range", "defines 2 vertices"});
-  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl -3 1\n"), dir.path(), {"relative vertex index -3"});
+  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl -3 1\n"), dir.path(),
+                 {"relative vertex index -3"});
 }
 
 TEST_CASE("bad input: OBJ index that is not an integer") {
   Scratch dir("obj-index-text");
-  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1 2.0\n"), dir.path(), {"bad.obj:3: ", "'2.0'", "not an integer"});
+  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1 2.0\n"), dir.path(),
+                 {"bad.obj:3: ", "'2.0'", "not an integer"});
 }
 
 TEST_CASE("bad input: OBJ 'l' with one index") {
   Scratch dir("obj-short-l");
-  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1\n"), dir.path(), {"bad.obj:3: ", "at least two vertex indices"});
+  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1\n"), dir.path(),
+                 {"bad.obj:3: ", "at least two vertex indices"});
 }
 
 TEST_CASE("bad input: OBJ self-loop") {
   Scratch dir("obj-self-loop");
-  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1 2\nl 2 2\n"), dir.path(), {"bad.obj:4: ", "self-loop"});
+  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1 2\nl 2 2\n"), dir.path(),
+                 {"bad.obj:4: ", "self-loop"});
 }
 
 TEST_CASE("bad input: OBJ duplicate edge") {
@@ -130,19 +143,21 @@ TEST_CASE("bad input: OBJ zero-length edge") {
 
 TEST_CASE("bad input: OBJ coincident vertices") {
   Scratch dir("obj-coincident");
-  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 1 0 0\nl 1 2\nl 2 3\nl 3 4\n"), dir.path(),
-                 {"bad.obj:4: ", "coincides with vertex 1"});
+  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 1 0 0\nl 1 2\nl 2 3\nl 3 4\n"),
+                 dir.path(), {"bad.obj:4: ", "coincides with vertex 1"});
 }
 
 TEST_CASE("bad input: OBJ isolated vertex") {
   Scratch dir("obj-isolated");
-  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nv 5 5 5\nl 1 2\n"), dir.path(), {"bad.obj:3: ", "isolated"});
+  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nv 5 5 5\nl 1 2\n"), dir.path(),
+                 {"bad.obj:3: ", "isolated"});
 }
 
 TEST_CASE("bad input: OBJ vertex of valence above 4") {
   Scratch dir("obj-valence");
-  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
-                                "l 1 2\nl 1 3\nl 1 4\nl 1 5\nl 1 6\n"),
+  check_rejected(relax_obj(dir,
+                           "v 0 0 0\nv 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
+                           "l 1 2\nl 1 3\nl 1 4\nl 1 5\nl 1 6\n"),
                  dir.path(), {"bad.obj:1: ", "valence 5", "at most 4"});
 }
 
@@ -155,7 +170,8 @@ TEST_CASE("bad input: OBJ disconnected graph") {
 TEST_CASE("bad input: OBJ without edges (an empty file)") {
   Scratch dir("obj-empty");
   check_rejected(relax_obj(dir, ""), dir.path(), {"bad.obj: ", "no rod segments"});
-  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\n"), dir.path(), {"bad.obj: ", "no rod segments"});
+  check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\n"), dir.path(),
+                 {"bad.obj: ", "no rod segments"});
 }
 
 TEST_CASE("bad input: OBJ of random bytes") {
@@ -191,7 +207,8 @@ TEST_CASE("bad input: an unreadable linkage file (mode 000)") {
   fs::permissions(dir / "locked.obj", fs::perms::none);
   write_text(dir / "run.json", config_with("locked.obj"));
   const CommandResult r = run_xshell_unprivileged("relax run.json", dir.path());
-  if (r.status == -2) XSHELL_SKIP("root without setpriv(1): the unreadable-file case cannot be checked here");
+  if (r.status == -2)
+    XSHELL_SKIP("root without setpriv(1): the unreadable-file case cannot be checked here");
   check_rejected(r, dir.path(), {"cannot open linkage file 'locked.obj'", "Permission denied"});
 }
 
@@ -207,7 +224,8 @@ TEST_CASE("bad input: a missing configuration file") {
 TEST_CASE("bad input: a configuration path that is a folder") {
   Scratch dir("config-folder");
   fs::create_directory(dir / "run.json");
-  check_rejected(run_xshell("relax run.json", dir.path()), dir.path(), {"configuration file 'run.json'", "folder"});
+  check_rejected(run_xshell("relax run.json", dir.path()), dir.path(),
+                 {"configuration file 'run.json'", "folder"});
 }
 
 TEST_CASE("bad input: an unreadable configuration file (mode 000)") {
@@ -215,17 +233,19 @@ TEST_CASE("bad input: an unreadable configuration file (mode 000)") {
   write_text(dir / "run.json", grid_config());
   fs::permissions(dir / "run.json", fs::perms::none);
   const CommandResult r = run_xshell_unprivileged("relax run.json", dir.path());
-  if (r.status == -2) XSHELL_SKIP("root without setpriv(1): the unreadable-file case cannot be checked here");
+  if (r.status == -2)
+    XSHELL_SKIP("root without setpriv(1): the unreadable-file case cannot be checked here");
   check_rejected(r, dir.path(), {"cannot open configuration file 'run.json'", "Permission denied"});
 }
 
 TEST_CASE("bad input: JSON that does not parse gives the line and the column") {
   Scratch dir("config-syntax");
   // Line 3 ends with a second comma at column 21.
-  check_rejected(relax_config(dir, "{\n  \"linkage\": \"a.obj\",\n  \"subdivisions\": 8,,\n}"), dir.path(),
-                 {"run.json:3:21: invalid JSON"});
+  check_rejected(relax_config(dir, "{\n  \"linkage\": \"a.obj\",\n  \"subdivisions\": 8,,\n}"),
+                 dir.path(), {"run.json:3:21: invalid JSON"});
   // Truncated: the end of the text.
-  check_rejected(relax_config(dir, "{\"linkage\": \"a.obj\""), dir.path(), {"run.json:1:20: invalid JSON"});
+  check_rejected(relax_config(dir, "{\"linkage\": \"a.obj\""), dir.path(),
+                 {"run.json:1:20: invalid JSON"});
   check_rejected(relax_config(dir, ""), dir.path(), {"run.json:1:1: invalid JSON"});
 }
 
@@ -234,7 +254,8 @@ TEST_CASE("bad input: NaN and Infinity literals are not JSON") {
   for (const std::string literal : {"NaN", "nan", "Infinity", "-Infinity", "inf"}) {
     CAPTURE(literal);
     Scratch dir("config-nan");
-    const CommandResult r = relax_config(dir, grid_config(R"(, "loads": {"gravity": [0, 0, )" + literal + "]}"));
+    const CommandResult r =
+        relax_config(dir, grid_config(R"(, "loads": {"gravity": [0, 0, )" + literal + "]}"));
     check_rejected(r, dir.path(), {"run.json:", "invalid JSON", "JSON has no NaN or Infinity"});
     ++checked;
   }
@@ -262,7 +283,8 @@ TEST_CASE("bad input: numbers that overflow to infinity, anywhere") {
   }
   const std::vector<std::pair<std::string, std::string>> more = {
       {R"(, "loads": {"gravity": [0, 0, -1e999]})", "loads.gravity[2]"},
-      {R"(, "loads": {"forces": [{"vertex": 13, "force": [1e999, 0, 0]}]})", "loads.forces[0].force[0]"},
+      {R"(, "loads": {"forces": [{"vertex": 13, "force": [1e999, 0, 0]}]})",
+       "loads.forces[0].force[0]"},
       {R"(, "supports": [{"vertex": 1e999, "fix": ["position"]}])", "supports[0].vertex"},
       {R"(, "solver": {"gradient_tolerance": 1e999})", "solver.gradient_tolerance"},
       {R"(, "solver": {"method": "dynamics", "damping": 1e999})", "solver.damping"},
@@ -271,7 +293,8 @@ TEST_CASE("bad input: numbers that overflow to infinity, anywhere") {
   for (const auto& [extra, path] : more) {
     CAPTURE(path);
     Scratch dir("config-overflow");
-    check_rejected(relax_config(dir, grid_config(extra)), dir.path(), {"run.json: " + path + ": number", "overflows"});
+    check_rejected(relax_config(dir, grid_config(extra)), dir.path(),
+                   {"run.json: " + path + ": number", "overflows"});
     ++checked;
   }
   CHECK(checked == 11);
@@ -279,10 +302,13 @@ TEST_CASE("bad input: numbers that overflow to infinity, anywhere") {
 
 TEST_CASE("bad input: an unknown key, with the closest valid key suggested") {
   Scratch dir("config-unknown");
-  check_rejected(relax_config(dir, grid_config_replacing("\"subdivisions\"", "\"subdivision\"")), dir.path(),
-                 {"unknown key \"subdivision\" at the top level", "did you mean \"subdivisions\"?"});
-  check_rejected(relax_config(dir, grid_config_replacing("\"young_modulus\"", "\"youngs_modulus\"")), dir.path(),
-                 {"unknown key \"youngs_modulus\" in material", "did you mean \"young_modulus\"?"});
+  check_rejected(
+      relax_config(dir, grid_config_replacing("\"subdivisions\"", "\"subdivision\"")), dir.path(),
+      {"unknown key \"subdivision\" at the top level", "did you mean \"subdivisions\"?"});
+  check_rejected(
+      relax_config(dir, grid_config_replacing("\"young_modulus\"", "\"youngs_modulus\"")),
+      dir.path(),
+      {"unknown key \"youngs_modulus\" in material", "did you mean \"young_modulus\"?"});
   check_rejected(relax_config(dir, grid_config(R"(, "solver": {"max_iteration": 5})")), dir.path(),
                  {"in solver", "did you mean \"max_iterations\"?"});
   // Nothing close: the valid keys are listed.
@@ -298,18 +324,21 @@ TEST_CASE("bad input: a key given twice") {
 
 TEST_CASE("bad input: wrong types") {
   Scratch dir("config-types");
-  check_rejected(relax_config(dir, grid_config_replacing("2.0e10", "\"2.0e10\"")), dir.path(),
-                 {"run.json: material.young_modulus: expected a number, got a string (\"2.0e10\")"});
-  check_rejected(relax_config(dir, grid_config_replacing("\"subdivisions\": 4", "\"subdivisions\": 4.5")),
-                 dir.path(), {"run.json: subdivisions: expected an integer"});
-  check_rejected(relax_config(dir, grid_config_replacing("\"subdivisions\": 4", "\"subdivisions\": \"4\"")),
-                 dir.path(), {"run.json: subdivisions: expected an integer"});
+  check_rejected(
+      relax_config(dir, grid_config_replacing("2.0e10", "\"2.0e10\"")), dir.path(),
+      {"run.json: material.young_modulus: expected a number, got a string (\"2.0e10\")"});
+  check_rejected(
+      relax_config(dir, grid_config_replacing("\"subdivisions\": 4", "\"subdivisions\": 4.5")),
+      dir.path(), {"run.json: subdivisions: expected an integer"});
+  check_rejected(
+      relax_config(dir, grid_config_replacing("\"subdivisions\": 4", "\"subdivisions\": \"4\"")),
+      dir.path(), {"run.json: subdivisions: expected an integer"});
   check_rejected(relax_config(dir, grid_config(R"(, "supports": {"vertex": 1})")), dir.path(),
                  {"run.json: supports: expected an array, got an object"});
-  check_rejected(relax_config(dir, grid_config(R"(, "loads": {"gravity": [0, -9.81]})")), dir.path(),
-                 {"run.json: loads.gravity: expected an array of three numbers"});
-  check_rejected(relax_config(dir, grid_config(R"(, "solver": {"first_order": "yes"})")), dir.path(),
-                 {"run.json: solver.first_order: expected true or false"});
+  check_rejected(relax_config(dir, grid_config(R"(, "loads": {"gravity": [0, -9.81]})")),
+                 dir.path(), {"run.json: loads.gravity: expected an array of three numbers"});
+  check_rejected(relax_config(dir, grid_config(R"(, "solver": {"first_order": "yes"})")),
+                 dir.path(), {"run.json: solver.first_order: expected true or false"});
   check_rejected(relax_config(dir, grid_config(R"(, "solver": {"method": "newtonn"})")), dir.path(),
                  {"run.json: solver.method: \"newtonn\" is not a valid choice", "\"newton\""});
   check_rejected(relax_config(dir, "[1, 2, 3]"), dir.path(), {"must be a JSON object"});
@@ -317,9 +346,10 @@ TEST_CASE("bad input: wrong types") {
 
 TEST_CASE("bad input: a missing required key") {
   Scratch dir("config-missing-key");
-  check_rejected(relax_config(dir, grid_config_replacing("\"young_modulus\": 2.0e10, ", "")), dir.path(),
-                 {"run.json: missing required key \"material.young_modulus\""});
-  check_rejected(relax_config(dir, "{}"), dir.path(), {"run.json: missing required key \"linkage\""});
+  check_rejected(relax_config(dir, grid_config_replacing("\"young_modulus\": 2.0e10, ", "")),
+                 dir.path(), {"run.json: missing required key \"material.young_modulus\""});
+  check_rejected(relax_config(dir, "{}"), dir.path(),
+                 {"run.json: missing required key \"linkage\""});
 }
 
 TEST_CASE("bad input: a negative or zero Young's modulus") {
@@ -332,16 +362,16 @@ TEST_CASE("bad input: a negative or zero Young's modulus") {
 
 TEST_CASE("bad input: negative or zero cross-section dimensions") {
   Scratch dir("config-section");
-  check_rejected(relax_config(dir, grid_config_replacing("\"width\": 0.01", "\"width\": -0.01")), dir.path(),
-                 {"run.json: material.cross_section.width: must be > 0"});
-  check_rejected(relax_config(dir, grid_config_replacing("\"height\": 0.007", "\"height\": 0")), dir.path(),
-                 {"run.json: material.cross_section.height: must be > 0"});
+  check_rejected(relax_config(dir, grid_config_replacing("\"width\": 0.01", "\"width\": -0.01")),
+                 dir.path(), {"run.json: material.cross_section.width: must be > 0"});
+  check_rejected(relax_config(dir, grid_config_replacing("\"height\": 0.007", "\"height\": 0")),
+                 dir.path(), {"run.json: material.cross_section.height: must be > 0"});
 }
 
 TEST_CASE("bad input: a negative density") {
   Scratch dir("config-density");
-  check_rejected(relax_config(dir, grid_config_replacing("\"density\": 1800", "\"density\": -1")), dir.path(),
-                 {"run.json: material.density: must be >= 0"});
+  check_rejected(relax_config(dir, grid_config_replacing("\"density\": 1800", "\"density\": -1")),
+                 dir.path(), {"run.json: material.density: must be >= 0"});
 }
 
 TEST_CASE("bad input: a Poisson ratio outside (-1, 0.5), inside it runs") {
@@ -349,16 +379,19 @@ TEST_CASE("bad input: a Poisson ratio outside (-1, 0.5), inside it runs") {
   for (const std::string nu : {"0.5", "-1", "0.7", "-1.5", "2"}) {
     CAPTURE(nu);
     Scratch dir("config-poisson");
-    check_rejected(relax_config(dir, grid_config_replacing("\"density\": 1800", "\"density\": 1800, \"poisson_ratio\": " + nu)),
-                   dir.path(), {"run.json: material.poisson_ratio: must be in (-1, 0.5), got " + nu});
+    check_rejected(
+        relax_config(dir, grid_config_replacing("\"density\": 1800",
+                                                "\"density\": 1800, \"poisson_ratio\": " + nu)),
+        dir.path(), {"run.json: material.poisson_ratio: must be in (-1, 0.5), got " + nu});
     ++checked;
   }
   CHECK(checked == 5);
   for (const std::string nu : {"0.49", "-0.99"}) {
     CAPTURE(nu);
     Scratch dir("config-poisson-ok");
-    const CommandResult r =
-        relax_config(dir, grid_config_replacing("\"density\": 1800", "\"density\": 1800, \"poisson_ratio\": " + nu));
+    const CommandResult r = relax_config(
+        dir,
+        grid_config_replacing("\"density\": 1800", "\"density\": 1800, \"poisson_ratio\": " + nu));
     CAPTURE(r.errors);
     CHECK(r.status == 0);
   }
@@ -369,49 +402,60 @@ TEST_CASE("bad input: subdivisions below the model's minimum (3), 3 runs") {
   for (const std::string n : {"2", "1", "0", "-3"}) {
     CAPTURE(n);
     Scratch dir("config-subdivisions");
-    check_rejected(relax_config(dir, grid_config_replacing("\"subdivisions\": 4", "\"subdivisions\": " + n)),
-                   dir.path(), {"run.json: subdivisions: must be >= 3, got " + n});
+    check_rejected(
+        relax_config(dir, grid_config_replacing("\"subdivisions\": 4", "\"subdivisions\": " + n)),
+        dir.path(), {"run.json: subdivisions: must be >= 3, got " + n});
     ++checked;
   }
   CHECK(checked == 4);
   Scratch dir("config-subdivisions-ok");
-  const CommandResult r = relax_config(dir, grid_config_replacing("\"subdivisions\": 4", "\"subdivisions\": 3"));
+  const CommandResult r =
+      relax_config(dir, grid_config_replacing("\"subdivisions\": 4", "\"subdivisions\": 3"));
   CAPTURE(r.errors);
   CHECK(r.status == 0);
 }
 
 TEST_CASE("bad input: subdivisions too many for any machine") {
   Scratch dir("config-subdivisions-huge");
-  check_rejected(relax_config(dir, grid_config_replacing("\"subdivisions\": 4", "\"subdivisions\": 2000000000")),
+  check_rejected(relax_config(dir, grid_config_replacing("\"subdivisions\": 4",
+                                                         "\"subdivisions\": 2000000000")),
                  dir.path(), {"run.json: subdivisions: 2000000000 x 40 segments", "at most"});
 }
 
 TEST_CASE("bad input: a support naming a vertex that does not exist") {
   Scratch dir("config-support-vertex");
-  check_rejected(relax_config(dir, grid_config(R"(, "supports": [{"vertex": 32, "fix": ["position"]}])")), dir.path(),
-                 {"run.json: supports[0].vertex: vertex 32 is out of range; the linkage has 32 vertices"});
-  check_rejected(relax_config(dir, grid_config(R"(, "supports": [{"vertex": -1, "fix": ["position"]}])")), dir.path(),
-                 {"run.json: supports[0].vertex: a vertex index is 0-based"});
+  check_rejected(
+      relax_config(dir, grid_config(R"(, "supports": [{"vertex": 32, "fix": ["position"]}])")),
+      dir.path(),
+      {"run.json: supports[0].vertex: vertex 32 is out of range; the linkage has 32 vertices"});
+  check_rejected(
+      relax_config(dir, grid_config(R"(, "supports": [{"vertex": -1, "fix": ["position"]}])")),
+      dir.path(), {"run.json: supports[0].vertex: a vertex index is 0-based"});
 }
 
 TEST_CASE("bad input: a force naming a vertex that does not exist") {
   Scratch dir("config-force-vertex");
   check_rejected(
-      relax_config(dir, grid_config(R"(, "loads": {"forces": [{"vertex": 13, "force": [0, 0, -1]}, {"vertex": 99, "force": [0, 0, -1]}]})")),
+      relax_config(
+          dir,
+          grid_config(
+              R"(, "loads": {"forces": [{"vertex": 13, "force": [0, 0, -1]}, {"vertex": 99, "force": [0, 0, -1]}]})")),
       dir.path(), {"run.json: loads.forces[1].vertex: vertex 99 is out of range"});
 }
 
 TEST_CASE("bad input: a deployment naming a vertex that does not exist") {
   Scratch dir("config-deployment-vertex");
   check_rejected(
-      relax_config(dir, grid_config(R"(, "deployment": {"joint_angles": [{"vertex": 40, "angle": 1.0}]})")),
+      relax_config(
+          dir, grid_config(R"(, "deployment": {"joint_angles": [{"vertex": 40, "angle": 1.0}]})")),
       dir.path(), {"run.json: deployment.joint_angles[0].vertex: vertex 40 is out of range"});
 }
 
 TEST_CASE("bad input: a deployment that drives a free rod end") {
   Scratch dir("config-deployment-free-end");
   check_rejected(
-      relax_config(dir, grid_config(R"(, "deployment": {"joint_angles": [{"vertex": 0, "angle": 1.0}]})")),
+      relax_config(
+          dir, grid_config(R"(, "deployment": {"joint_angles": [{"vertex": 0, "angle": 1.0}]})")),
       dir.path(), {"run.json: deployment.joint_angles[0].vertex: vertex 0 is a free rod end"});
 }
 
@@ -425,8 +469,9 @@ TEST_CASE("bad input: a deployment with edge-vector joints") {
 TEST_CASE("bad input: a support that does not apply to its vertex") {
   Scratch dir("config-support-kind");
   // Vertex 0 of the grid is a free rod end: it has no opening angle.
-  check_rejected(relax_config(dir, grid_config(R"(, "supports": [{"vertex": 0, "fix": ["opening_angle"]}])")),
-                 dir.path(), {"support at vertex 0", "a free rod end has no opening angle"});
+  check_rejected(
+      relax_config(dir, grid_config(R"(, "supports": [{"vertex": 0, "fix": ["opening_angle"]}])")),
+      dir.path(), {"support at vertex 0", "a free rod end has no opening angle"});
 }
 
 TEST_CASE("bad input: command-line usage") {
@@ -445,7 +490,8 @@ TEST_CASE("bad input: command-line usage") {
 TEST_CASE("bad output: an output directory inside a file") {
   Scratch dir("out-under-file");
   write_text(dir / "a_file", "not a folder");
-  const CommandResult r = relax_config(dir, grid_config_replacing("\"directory\": \"out\"", "\"directory\": \"a_file/out\""));
+  const CommandResult r = relax_config(
+      dir, grid_config_replacing("\"directory\": \"out\"", "\"directory\": \"a_file/out\""));
   CAPTURE(r.errors);
   CHECK(r.status == 4);
   CHECK(r.errors.rfind("xshell: error: ", 0) == 0);
@@ -465,12 +511,15 @@ TEST_CASE("bad output: an output directory that is a file") {
 
 TEST_CASE("bad output: a read-only output directory") {
   Scratch dir("out-read-only");
-  write_text(dir / "run.json", grid_config_replacing("\"directory\": \"out\"", "\"directory\": \"locked/out\""));
+  write_text(dir / "run.json",
+             grid_config_replacing("\"directory\": \"out\"", "\"directory\": \"locked/out\""));
   fs::create_directory(dir / "locked");
-  fs::permissions(dir / "locked", fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
-                                      fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
+  fs::permissions(dir / "locked", fs::perms::owner_read | fs::perms::owner_exec |
+                                      fs::perms::group_read | fs::perms::group_exec |
+                                      fs::perms::others_read | fs::perms::others_exec);
   const CommandResult r = run_xshell_unprivileged("relax run.json", dir.path());
-  if (r.status == -2) XSHELL_SKIP("root without setpriv(1): the read-only case cannot be checked here");
+  if (r.status == -2)
+    XSHELL_SKIP("root without setpriv(1): the read-only case cannot be checked here");
   CAPTURE(r.errors);
   CHECK(r.status == 4);
   CHECK(contains(r.errors, "locked/out"));
@@ -499,10 +548,13 @@ TEST_CASE("bad input: --init with a state of another linkage") {
   write_text(dir / "grid.json", grid_config());
   REQUIRE(run_xshell("relax grid.json --out first", dir.path()).status == 0);
   // The same graph with other subdivisions is another linkage too.
-  write_text(dir / "finer.json", grid_config_replacing("\"subdivisions\": 4", "\"subdivisions\": 5"));
+  write_text(dir / "finer.json",
+             grid_config_replacing("\"subdivisions\": 4", "\"subdivisions\": 5"));
   const CommandResult finer = run_xshell("relax finer.json --init first/state.json", dir.path());
-  check_rejected(finer, dir.path(), {"first/state.json: the state belongs to another linkage", "\"subdivisions\":5"});
-  write_text(dir / "saddle.json", config_with((fs::path(XSHELL_SAMPLES_DIR) / "saddle.obj").string()));
+  check_rejected(finer, dir.path(),
+                 {"first/state.json: the state belongs to another linkage", "\"subdivisions\":5"});
+  write_text(dir / "saddle.json",
+             config_with((fs::path(XSHELL_SAMPLES_DIR) / "saddle.obj").string()));
   const CommandResult saddle = run_xshell("relax saddle.json --init first/state.json", dir.path());
   check_rejected(saddle, dir.path(), {"the state belongs to another linkage"});
 }

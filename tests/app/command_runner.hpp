@@ -24,7 +24,8 @@ struct CommandResult {
 // A fresh, empty temporary directory.
 inline fs::path temporary_directory(const std::string& name) {
   std::random_device rd;
-  const fs::path dir = fs::temp_directory_path() / ("xshell-test-" + name + "-" + std::to_string(rd()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("xshell-test-" + name + "-" + std::to_string(rd()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -37,15 +38,19 @@ inline std::string read_text(const fs::path& path) {
   return s.str();
 }
 
-inline nlohmann::json read_json(const fs::path& path) { return nlohmann::json::parse(read_text(path)); }
+inline nlohmann::json read_json(const fs::path& path) {
+  return nlohmann::json::parse(read_text(path));
+}
 
-inline void write_text(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+inline void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
 
 // Runs `xshell ARGS` (arguments already quoted as needed) in `dir`.
 inline CommandResult run_xshell(const std::string& args, const fs::path& dir) {
   const fs::path err = dir / "stderr.txt";
-  const std::string command = "cd '" + dir.string() + "' && '" + std::string(XSHELL_BINARY) + "' " + args +
-                              " > /dev/null 2> '" + err.string() + "'";
+  const std::string command = "cd '" + dir.string() + "' && '" + std::string(XSHELL_BINARY) + "' " +
+                              args + " > /dev/null 2> '" + err.string() + "'";
   const int raw = std::system(command.c_str());
   CommandResult r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -57,7 +62,8 @@ inline CommandResult run_xshell(const std::string& args, const fs::path& dir) {
 inline std::string sample_config(const fs::path& out, const std::string& extra = "",
                                  const std::string& linkage = "grid.obj") {
   return R"({
-  "linkage": ")" + (fs::path(XSHELL_SAMPLES_DIR) / linkage).string() + R"(",
+  "linkage": ")" +
+         (fs::path(XSHELL_SAMPLES_DIR) / linkage).string() + R"(",
   "subdivisions": 6,
   "rest_shape": "straight",
   "material": {"young_modulus": 2.0e10, "density": 1800,
@@ -65,7 +71,8 @@ inline std::string sample_config(const fs::path& out, const std::string& extra =
   "supports": [{"vertex": 1, "fix": ["position"]}, {"vertex": 4, "fix": ["position"]},
                {"vertex": 9, "fix": ["position"]}, {"vertex": 28, "fix": ["position"]}],
   "loads": {"gravity": [0, 0, -9.81], "forces": [{"vertex": 13, "force": [0, 0, -5.0]}]},
-  "output": {"directory": ")" + out.string() + R"("})" + extra + R"(
+  "output": {"directory": ")" +
+         out.string() + R"("})" + extra + R"(
 })";
 }
 

@@ -9,7 +9,6 @@
 
 namespace xshell::test {
 
-
 namespace {
 
 // A 3 x 3 grid of rods on a dome z = -0.8 (x^2 + y^2), spacing 0.25 m,
@@ -213,7 +212,8 @@ TEST_CASE("relax: a deployment with kinetic damping is refused, not ignored") {
   write_text(dir / "run.json", deploy_config(R"({"average_opening_angle": 1.9, "steps": 2})"));
   const CommandResult r = run_xshell("relax run.json --solver kinetic-damping", dir);
   CHECK(r.status == 2);
-  CHECK(r.errors.find("deployment: not available with solver.method \"kinetic-damping\"") != std::string::npos);
+  CHECK(r.errors.find("deployment: not available with solver.method \"kinetic-damping\"") !=
+        std::string::npos);
   CHECK(!fs::exists(dir / "out" / "summary.json"));
 }
 

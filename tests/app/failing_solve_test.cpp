@@ -12,7 +12,6 @@
 
 namespace xshell::test {
 
-
 namespace {
 
 struct Failed {
@@ -64,20 +63,23 @@ void check_restart(const Scratch& dir, const nlohmann::json& summary, int expect
 
 TEST_CASE("failing solve: Newton's iteration limit") {
   Scratch dir("fail-iterations");
-  const Failed f = run_failing(dir, sample_config(dir / "out", R"(, "solver": {"max_iterations": 1})"), "max_iterations");
+  const Failed f = run_failing(
+      dir, sample_config(dir / "out", R"(, "solver": {"max_iterations": 1})"), "max_iterations");
   CHECK(f.summary["reason"] == "no convergence in 1 iterations");
   CHECK(f.summary["iterations"] == 1);
   CHECK(f.summary["gradient_norm"].get<double>() > f.summary["gradient_tolerance"].get<double>());
   // The state is the iterate after the one iteration, not the start.
   CHECK(f.summary["energy"]["total"].get<double>() < 0.0);
-  CHECK(f.summary["energy"]["total"].get<double>() == doctest::Approx(f.summary["history"][1]["energy"].get<double>()));
+  CHECK(f.summary["energy"]["total"].get<double>() ==
+        doctest::Approx(f.summary["history"][1]["energy"].get<double>()));
   check_restart(dir, f.summary);
 }
 
 TEST_CASE("failing solve: damped dynamics' step limit") {
   Scratch dir("fail-steps");
-  const Failed f = run_failing(dir, sample_config(dir / "out", R"(, "solver": {"method": "dynamics", "max_steps": 3})"),
-                                 "max_iterations");
+  const Failed f = run_failing(
+      dir, sample_config(dir / "out", R"(, "solver": {"method": "dynamics", "max_steps": 3})"),
+      "max_iterations");
   CHECK(f.summary["reason"] == "no convergence in 3 steps");
   CHECK(f.summary["iterations"] == 3);
   CHECK(f.summary["simulated_time"].get<double>() > 0.0);
@@ -86,8 +88,9 @@ TEST_CASE("failing solve: damped dynamics' step limit") {
 
 TEST_CASE("failing solve: a line search that cannot progress (tolerance below round-off)") {
   Scratch dir("fail-line-search");
-  const Failed f = run_failing(dir, sample_config(dir / "out", R"(, "solver": {"gradient_tolerance": 1e-300})"),
-                                 "line_search_failed");
+  const Failed f =
+      run_failing(dir, sample_config(dir / "out", R"(, "solver": {"gradient_tolerance": 1e-300})"),
+                  "line_search_failed");
   CHECK(contains(f.summary["reason"], "stagnation"));
   // It stopped at the round-off floor, in equilibrium for any sane tolerance.
   CHECK(f.summary["gradient_norm"].get<double>() < 1e-6);
@@ -146,7 +149,8 @@ TEST_CASE("relax: free rigid motions that nothing pushes: a warning, converged, 
   const CommandResult r = run_xshell("relax run.json", dir.path());
   CAPTURE(r.errors);
   CHECK(r.status == 0);
-  CHECK(contains(r.errors, "xshell: warning: the supports leave rigid motions free (translation along x"));
+  CHECK(contains(r.errors,
+                 "xshell: warning: the supports leave rigid motions free (translation along x"));
   const nlohmann::json s = read_json(dir / "out" / "summary.json");
   CHECK(s["converged"] == true);
   CHECK(s["stable"] == false);  // a mechanism: it slides without any force

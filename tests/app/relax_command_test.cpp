@@ -9,7 +9,6 @@
 
 namespace xshell::test {
 
-
 extern char** environ;
 
 TEST_CASE("relax: the sample runs and writes summary.json, state.json and the VTK series") {
@@ -27,10 +26,12 @@ TEST_CASE("relax: the sample runs and writes summary.json, state.json and the VT
   CHECK(s["wall_seconds"].get<double>() > 0.0);
   CHECK(s["unknowns"].get<int>() > s["free_unknowns"].get<int>());
   CHECK(s["gradient_norm"].get<double>() <= s["gradient_tolerance"].get<double>());
-  for (const char* key : {"total", "stretching", "bending", "twisting", "external"}) CHECK(s["energy"].contains(key));
+  for (const char* key : {"total", "stretching", "bending", "twisting", "external"})
+    CHECK(s["energy"].contains(key));
   CHECK(s["energy"]["total"].get<double>() ==
-        doctest::Approx(s["energy"]["stretching"].get<double>() + s["energy"]["bending"].get<double>() +
-                        s["energy"]["twisting"].get<double>() + s["energy"]["external"].get<double>()));
+        doctest::Approx(
+            s["energy"]["stretching"].get<double>() + s["energy"]["bending"].get<double>() +
+            s["energy"]["twisting"].get<double>() + s["energy"]["external"].get<double>()));
   CHECK(s["vertices"].size() == 32);
   CHECK(s["opening_angles"].size() == 32);
   CHECK(s["opening_angles"][0].is_null());          // a free end
@@ -53,13 +54,16 @@ TEST_CASE("relax --init from a written state reproduces it without iterating") {
   const CommandResult r = run_xshell("relax run.json --init first/state.json --out second", dir);
   CAPTURE(r.errors);
   REQUIRE(r.status == 0);
-  const nlohmann::json a = read_json(dir / "first" / "summary.json"), b = read_json(dir / "second" / "summary.json");
+  const nlohmann::json a = read_json(dir / "first" / "summary.json"),
+                       b = read_json(dir / "second" / "summary.json");
   CHECK(b["iterations"] == 0);
-  CHECK(b["energy"]["total"].get<double>() == doctest::Approx(a["energy"]["total"].get<double>()).epsilon(1e-12));
+  CHECK(b["energy"]["total"].get<double>() ==
+        doctest::Approx(a["energy"]["total"].get<double>()).epsilon(1e-12));
   int compared = 0;
   for (size_t v = 0; v < a["vertices"].size(); ++v)
     for (int c = 0; c < 3; ++c) {
-      CHECK(std::abs(a["vertices"][v][c].get<double>() - b["vertices"][v][c].get<double>()) < 1e-12);
+      CHECK(std::abs(a["vertices"][v][c].get<double>() - b["vertices"][v][c].get<double>()) <
+            1e-12);
       ++compared;
     }
   CHECK(compared == 96);
@@ -80,7 +84,8 @@ TEST_CASE("relax --init accepts a state of the same linkage under other loads an
   const CommandResult r = run_xshell("relax heavy.json --init light/state.json --out warm", dir);
   CAPTURE(r.errors);
   REQUIRE(r.status == 0);
-  const nlohmann::json cold = read_json(dir / "heavy" / "summary.json"), warm = read_json(dir / "warm" / "summary.json");
+  const nlohmann::json cold = read_json(dir / "heavy" / "summary.json"),
+                       warm = read_json(dir / "warm" / "summary.json");
   const nlohmann::json light = read_json(dir / "light" / "summary.json");
   CHECK(warm["converged"] == true);
   CHECK(warm["configuration"]["material"]["young_modulus"].get<double>() == 1.0e10);
@@ -92,7 +97,8 @@ TEST_CASE("relax --init accepts a state of the same linkage under other loads an
   int compared = 0;
   for (size_t v = 0; v < cold["vertices"].size(); ++v)
     for (int c = 0; c < 3; ++c) {
-      CHECK(std::abs(cold["vertices"][v][c].get<double>() - warm["vertices"][v][c].get<double>()) < 1e-8);
+      CHECK(std::abs(cold["vertices"][v][c].get<double>() - warm["vertices"][v][c].get<double>()) <
+            1e-8);
       ++compared;
     }
   CHECK(compared == 96);
@@ -130,7 +136,7 @@ TEST_CASE("relax: invalid input exits 2 with one clear message") {
     CHECK(r.errors.find("xshell: error:") != std::string::npos);
     ++checked;
   }
-  CHECK(run_xshell("relax", dir).status == 2);                   // usage
+  CHECK(run_xshell("relax", dir).status == 2);                      // usage
   CHECK(run_xshell("relax no_such_config.json", dir).status == 2);  // unreadable configuration
   CHECK(checked == 4);
 }
@@ -157,16 +163,20 @@ TEST_CASE("relax: an output directory that cannot be written exits 4") {
 TEST_CASE("relax: SIGINT writes the last state and an interrupted summary, and exits 130") {
   const fs::path dir = temporary_directory("interrupt");
   // Slow enough to interrupt: damped dynamics with fictitious masses.
-  write_text(dir / "run.json",
-             sample_config(dir / "out", R"(, "solver": {"method": "dynamics", "mass": "fictitious", "max_steps": 100000})"));
+  write_text(
+      dir / "run.json",
+      sample_config(
+          dir / "out",
+          R"(, "solver": {"method": "dynamics", "mass": "fictitious", "max_steps": 100000})"));
   const std::string binary = XSHELL_BINARY, config = (dir / "run.json").string();
-  char* argv[] = {const_cast<char*>(binary.c_str()), const_cast<char*>("relax"), const_cast<char*>(config.c_str()),
-                  const_cast<char*>("--quiet"), nullptr};
+  char* argv[] = {const_cast<char*>(binary.c_str()), const_cast<char*>("relax"),
+                  const_cast<char*>(config.c_str()), const_cast<char*>("--quiet"), nullptr};
   pid_t pid = 0;
   REQUIRE(posix_spawn(&pid, binary.c_str(), nullptr, nullptr, argv, environ) == 0);
   // Wait until the run has written a few steps, then interrupt it.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (std::chrono::steady_clock::now() < deadline && !fs::exists(dir / "out" / "rods_000003.vtp"))
+  while (std::chrono::steady_clock::now() < deadline &&
+         !fs::exists(dir / "out" / "rods_000003.vtp"))
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   REQUIRE(fs::exists(dir / "out" / "rods_000003.vtp"));
   kill(pid, SIGINT);

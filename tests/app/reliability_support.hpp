@@ -62,12 +62,14 @@ inline std::string last_line(const std::string& text) {
 // own, writing to "out" beside the configuration.
 inline std::string config_with(const std::string& linkage, const std::string& extra = "") {
   return R"({
-  "linkage": ")" + linkage + R"(",
+  "linkage": ")" +
+         linkage + R"(",
   "subdivisions": 4,
   "rest_shape": "straight",
   "material": {"young_modulus": 2.0e10, "density": 1800,
                "cross_section": {"shape": "rectangle", "width": 0.01, "height": 0.007}},
-  "output": {"directory": "out"})" + extra + R"(
+  "output": {"directory": "out"})" +
+         extra + R"(
 })";
 }
 
@@ -89,10 +91,11 @@ inline CommandResult run_xshell_unprivileged(const std::string& args, const fs::
   fs::copy_file(XSHELL_BINARY, copy, fs::copy_options::overwrite_existing);
   fs::permissions(dir, fs::perms::all & ~fs::perms::group_write & ~fs::perms::others_write);
   const fs::path err = dir / "stderr.txt";
-  const std::string command = "cd '" + dir.string() +
-                              "' && env -u LSAN_OPTIONS setpriv --reuid=65534 --regid=65534 --clear-groups "
-                              "./xshell-copy " + args +
-                              " > /dev/null 2> '" + err.string() + "'";
+  const std::string command =
+      "cd '" + dir.string() +
+      "' && env -u LSAN_OPTIONS setpriv --reuid=65534 --regid=65534 --clear-groups "
+      "./xshell-copy " +
+      args + " > /dev/null 2> '" + err.string() + "'";
   const int raw = std::system(command.c_str());
   CommandResult r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -109,8 +112,8 @@ class RelaxProcess {
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    char* argv[] = {const_cast<char*>(binary.c_str()), const_cast<char*>("relax"), const_cast<char*>(path.c_str()),
-                    const_cast<char*>("--quiet"), nullptr};
+    char* argv[] = {const_cast<char*>(binary.c_str()), const_cast<char*>("relax"),
+                    const_cast<char*>(path.c_str()), const_cast<char*>("--quiet"), nullptr};
     started_ = posix_spawn(&pid_, binary.c_str(), &actions, nullptr, argv, environ) == 0;
     posix_spawn_file_actions_destroy(&actions);
   }
@@ -143,8 +146,10 @@ class RelaxProcess {
   int wait(std::chrono::seconds limit = std::chrono::seconds(120)) {
     const auto deadline = std::chrono::steady_clock::now() + limit;
     while (!reaped_ && std::chrono::steady_clock::now() < deadline) {
-      if (waitpid(pid_, &raw_, WNOHANG) == pid_) reaped_ = true;
-      else std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      if (waitpid(pid_, &raw_, WNOHANG) == pid_)
+        reaped_ = true;
+      else
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     return reaped_ ? raw_ : -1;
   }
@@ -164,7 +169,8 @@ inline int check_outputs_complete(const fs::path& dir) {
   int checked = 0;
   for (const auto& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
-    if (!entry.is_regular_file() || name.front() == '.') continue;  // temporary names are never final
+    if (!entry.is_regular_file() || name.front() == '.')
+      continue;  // temporary names are never final
     const std::string text = read_text(entry.path());
     INFO("file: " << name);
     if (entry.path().extension() == ".json") {
@@ -180,7 +186,8 @@ inline int check_outputs_complete(const fs::path& dir) {
   }
   if (fs::exists(dir / "series.pvd")) {
     const std::string pvd = read_text(dir / "series.pvd");
-    for (std::size_t at = pvd.find("file=\""); at != std::string::npos; at = pvd.find("file=\"", at + 1)) {
+    for (std::size_t at = pvd.find("file=\""); at != std::string::npos;
+         at = pvd.find("file=\"", at + 1)) {
       const std::size_t end = pvd.find('"', at + 6);
       const std::string file = pvd.substr(at + 6, end - at - 6);
       CHECK_MESSAGE(fs::exists(dir / file), "series.pvd names a missing file: " << file);

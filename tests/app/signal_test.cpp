@@ -11,12 +11,13 @@
 
 namespace xshell::test {
 
-
 namespace {
 
 // Slow enough to interrupt: damped dynamics with fictitious masses.
 std::string slow_dynamics(const Scratch& dir) {
-  return sample_config(dir / "out", R"(, "solver": {"method": "dynamics", "mass": "fictitious", "max_steps": 1000000})");
+  return sample_config(
+      dir / "out",
+      R"(, "solver": {"method": "dynamics", "mass": "fictitious", "max_steps": 1000000})");
 }
 
 // Slow enough to interrupt: Newton iterating on a linkage that can slide
@@ -95,7 +96,8 @@ TEST_CASE("interrupt: SIGTERM and SIGINT during Newton, the state restarts the r
     write_text(dir / "again.json", config_with(grid_obj(), R"(, "solver": {"max_iterations": 1},
   "supports": [{"vertex": 0, "fix": ["z"]}, {"vertex": 5, "fix": ["z"]}, {"vertex": 27, "fix": ["z"]}],
   "loads": {"forces": [{"vertex": 13, "force": [1, 0, 0]}]})"));
-    const CommandResult again = run_xshell("relax again.json --init out/state.json --out again", dir.path());
+    const CommandResult again =
+        run_xshell("relax again.json --init out/state.json --out again", dir.path());
     CAPTURE(again.errors);
     CHECK(again.status == 3);
     CHECK(read_json(dir / "again" / "summary.json")["history"][0]["energy"].get<double>() ==
@@ -106,15 +108,17 @@ TEST_CASE("interrupt: SIGTERM and SIGINT during Newton, the state restarts the r
 TEST_CASE("interrupt: SIGINT during a deployment") {
   Scratch dir("sigint-deployment");
   const nlohmann::json s = interrupt(
-      dir, config_with(grid_obj(), R"(, "deployment": {"average_opening_angle": 1.2, "steps": 400})"), SIGINT,
-      "rods_000004.vtp");
+      dir,
+      config_with(grid_obj(), R"(, "deployment": {"average_opening_angle": 1.2, "steps": 400})"),
+      SIGINT, "rods_000004.vtp");
   REQUIRE(s.contains("deployment"));
   CHECK(s["deployment"]["status"] == "interrupted");
   // Every step in the table is complete: all nine columns.
   const std::string table = read_text(dir / "out" / "deployment.csv");
   int rows = 0;
   std::size_t start = table.find('\n') + 1;
-  for (std::size_t end = table.find('\n', start); end != std::string::npos; end = table.find('\n', start)) {
+  for (std::size_t end = table.find('\n', start); end != std::string::npos;
+       end = table.find('\n', start)) {
     const std::string row = table.substr(start, end - start);
     CHECK(std::count(row.begin(), row.end(), ',') == 8);
     ++rows;
@@ -128,7 +132,8 @@ TEST_CASE("interrupt: SIGKILL at any moment leaves no truncated file under a fin
   std::mt19937 rng(5);
   std::uniform_int_distribution<int> pause_ms(0, 40);
   int killed = 0, files = 0;
-  for (const char* step : {"rods_000001.vtp", "rods_000004.vtp", "frames_000006.vtp", "joints_000009.vtp"}) {
+  for (const char* step :
+       {"rods_000001.vtp", "rods_000004.vtp", "frames_000006.vtp", "joints_000009.vtp"}) {
     CAPTURE(step);
     Scratch dir("sigkill");
     write_text(dir / "run.json", slow_dynamics(dir));
@@ -156,8 +161,8 @@ TEST_CASE("interrupt: a closed stderr (SIGPIPE) does not stop a run before its o
   REQUIRE(pipe(fds) == 0);
   close(fds[0]);  // nobody reads: every write to stderr fails
   const std::string binary = XSHELL_BINARY, config = (dir / "run.json").string();
-  char* argv[] = {const_cast<char*>(binary.c_str()), const_cast<char*>("relax"), const_cast<char*>(config.c_str()),
-                  const_cast<char*>("--verbose"), nullptr};
+  char* argv[] = {const_cast<char*>(binary.c_str()), const_cast<char*>("relax"),
+                  const_cast<char*>(config.c_str()), const_cast<char*>("--verbose"), nullptr};
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, fds[1], 2);

@@ -11,13 +11,13 @@
 
 namespace xshell::test {
 
-
 namespace {
 
 nlohmann::json solve_sample(const fs::path& dir, const std::string& solver) {
   write_text(dir / (solver + ".json"),
              sample_config(dir / solver, R"(, "solver": {"gradient_tolerance": 1e-8})"));
-  const CommandResult r = run_xshell("relax " + solver + ".json --solver " + solver + " --quiet", dir);
+  const CommandResult r =
+      run_xshell("relax " + solver + ".json --solver " + solver + " --quiet", dir);
   CAPTURE(r.errors);
   REQUIRE(r.status == 0);
   nlohmann::json s = read_json(dir / solver / "summary.json");
@@ -44,13 +44,15 @@ void check_same_equilibrium(const nlohmann::json& a, const nlohmann::json& b) {
   double vertex_error = 0.0, angle_error = 0.0;
   for (size_t v = 0; v < a["vertices"].size(); ++v) {
     for (int c = 0; c < 3; ++c)
-      vertex_error = std::max(vertex_error, std::abs(a["vertices"][v][c].get<double>() - b["vertices"][v][c].get<double>()));
+      vertex_error = std::max(vertex_error, std::abs(a["vertices"][v][c].get<double>() -
+                                                     b["vertices"][v][c].get<double>()));
     if (!a["opening_angles"][v].is_null())
-      angle_error = std::max(angle_error, std::abs(a["opening_angles"][v].get<double>() - b["opening_angles"][v].get<double>()));
+      angle_error = std::max(angle_error, std::abs(a["opening_angles"][v].get<double>() -
+                                                   b["opening_angles"][v].get<double>()));
   }
   const double ea = a["energy"]["total"].get<double>(), eb = b["energy"]["total"].get<double>();
-  MESSAGE("vertices " << vertex_error / diagonal << " of the diagonal, angles " << angle_error << " rad, energies "
-                      << std::abs(ea - eb) / std::abs(ea) << " relative");
+  MESSAGE("vertices " << vertex_error / diagonal << " of the diagonal, angles " << angle_error
+                      << " rad, energies " << std::abs(ea - eb) / std::abs(ea) << " relative");
   CHECK(vertex_error <= 1e-6 * diagonal);
   CHECK(angle_error <= 1e-6);
   CHECK(std::abs(ea - eb) <= 1e-7 * std::abs(ea));
@@ -75,8 +77,11 @@ TEST_CASE("relax: damped dynamics reaches Newton's equilibrium of the sample, in
   CHECK(second["simulated_time"].get<double>() > 0.0);
   check_same_equilibrium(newton, second);
   // The overdamped flow, through the configuration.
-  write_text(dir / "first.json",
-             sample_config(dir / "first", R"(, "solver": {"method": "dynamics", "first_order": true, "gradient_tolerance": 1e-8})"));
+  write_text(
+      dir / "first.json",
+      sample_config(
+          dir / "first",
+          R"(, "solver": {"method": "dynamics", "first_order": true, "gradient_tolerance": 1e-8})"));
   const CommandResult r = run_xshell("relax first.json --quiet", dir);
   CAPTURE(r.errors);
   REQUIRE(r.status == 0);

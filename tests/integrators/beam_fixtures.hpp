@@ -26,7 +26,8 @@ inline LinkageProblem unit_beam(int subdivisions, const StaticsSetup& setup, dou
 
 // The unit beam clamped at vertex 0 (its first edge held), loaded at the
 // tip (vertex 1).
-inline LinkageProblem cantilever_beam(int subdivisions, const Eigen::Vector3d& tip_force, double w = 0.01) {
+inline LinkageProblem cantilever_beam(int subdivisions, const Eigen::Vector3d& tip_force,
+                                      double w = 0.01) {
   StaticsSetup setup;
   setup.supports = {{0, {SupportDof::Orientation}}};
   setup.forces = {{1, tip_force}};

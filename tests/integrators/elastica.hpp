@@ -20,7 +20,11 @@ inline ElasticaTip cantilever_elastica(double alpha) {
   // Integrates from theta'(0) = k0; returns theta'(1) and the tip.
   auto shoot = [&](double k0, ElasticaTip* tip) {
     double th = 0.0, k = k0, x = 0.0, y = 0.0;
-    auto f = [&](double t, double kk, double& dt, double& dk) { dt = kk; dk = -alpha * std::cos(t); (void)kk; };
+    auto f = [&](double t, double kk, double& dt, double& dk) {
+      dt = kk;
+      dk = -alpha * std::cos(t);
+      (void)kk;
+    };
     for (int i = 0; i < steps; ++i) {
       double a1, b1, a2, b2, a3, b3, a4, b4;
       f(th, k, a1, b1);

@@ -78,11 +78,11 @@ StencilObjective make_column(const ColumnOptions& o) {
   for (int k = 0; k <= N; ++k) x.segment<2>(2 * k) << k * L, o.imperfection * std::sin(kPi * k / N);
   std::vector<Term> terms;
   for (int k = 0; k < N; ++k)
-    terms.push_back(make_term<4>({2 * k, 2 * k + 1, 2 * k + 2, 2 * k + 3},
-                                 [o, L](const std::array<Dual<4>, 4>& v) {
-                                   const Dual<4> l = sqrt(square(v[2] - v[0]) + square(v[3] - v[1]));
-                                   return (0.5 * o.stretch / L) * square(l - L);
-                                 }));
+    terms.push_back(make_term<4>(
+        {2 * k, 2 * k + 1, 2 * k + 2, 2 * k + 3}, [o, L](const std::array<Dual<4>, 4>& v) {
+          const Dual<4> l = sqrt(square(v[2] - v[0]) + square(v[3] - v[1]));
+          return (0.5 * o.stretch / L) * square(l - L);
+        }));
   for (int k = 1; k < N; ++k)
     terms.push_back(make_term<6>(
         {2 * k - 2, 2 * k - 1, 2 * k, 2 * k + 1, 2 * k + 2, 2 * k + 3},

@@ -128,7 +128,8 @@ class FaultyObjective : public ForwardingObjective {
 // evaluate.
 class InvalidAtCall : public ForwardingObjective {
  public:
-  InvalidAtCall(Objective& inner, long invalid_call) : ForwardingObjective(inner), invalid_call_(invalid_call) {}
+  InvalidAtCall(Objective& inner, long invalid_call)
+      : ForwardingObjective(inner), invalid_call_(invalid_call) {}
 
  protected:
   void before_set(long call) override {

@@ -1,13 +1,12 @@
 // The toys' derivatives against finite differences, at generic (random)
 // configurations: the solver tests below rely on them being exact.
+#include "toy_objectives.hpp"
+
 #include <doctest/doctest.h>
 
 #include <random>
 
-#include "toy_objectives.hpp"
-
 namespace xshell::test {
-
 
 namespace {
 

@@ -421,24 +421,32 @@ TEST_CASE("config: bad rods entries are rejected") {
   const json material = {{"young_modulus", 1}};
   const std::vector<std::pair<json, std::vector<std::string>>> cases = {
       {{{{"material", material}}}, {"rods[0]: needs exactly one selector"}},
-      {{{{"rod", 0}, {"vertices", {1}}, {"material", material}}}, {"rods[0]: needs exactly one selector"}},
+      {{{{"rod", 0}, {"vertices", {1}}, {"material", material}}},
+       {"rods[0]: needs exactly one selector"}},
       {{{{"rod", 0}}}, {"missing required key \"rods[0].material\""}},
       {{{{"rod", -1}, {"material", material}}}, {"rods[0].rod: a rod index is 0-based"}},
       {{{{"rod", 0.5}, {"material", material}}}, {"rods[0].rod", "expected an integer"}},
-      {{{{"rods", 0}, {"material", material}}}, {"unknown key \"rods\" in rods[0]", "did you mean \"rod\"?"}},
+      {{{{"rods", 0}, {"material", material}}},
+       {"unknown key \"rods\" in rods[0]", "did you mean \"rod\"?"}},
       {{{{"rod", 0}, {"material", {{"young_modulos", 1}}}}},
        {"in rods[0].material", "did you mean \"young_modulus\"?"}},
       {{{{"rod", 0}, {"material", {{"cross_section", {{"widht", 1}}}}}}},
        {"in rods[0].material.cross_section", "did you mean \"width\"?"}},
-      {{{{"rod", 0}, {"material", {{"young_modulus", -3}}}}}, {"rods[0].material.young_modulus: must be > 0"}},
+      {{{{"rod", 0}, {"material", {{"young_modulus", -3}}}}},
+       {"rods[0].material.young_modulus: must be > 0"}},
       {{{{"rod", 0}, {"material", {{"cross_section", {{"height", 0}}}}}}},
        {"rods[0].material.cross_section.height: must be > 0"}},
-      {{{{"edges", json::array()}, {"material", material}}}, {"rods[0].edges: must list at least one edge"}},
-      {{{{"edges", {{1, 2, 3}}}, {"material", material}}}, {"rods[0].edges[0]: expected an edge [i, j]"}},
-      {{{{"edges", {{1, 2}, {2, 1}}}, {"material", material}}}, {"rods[0].edges[1]: edge [2, 1] is listed twice"}},
+      {{{{"edges", json::array()}, {"material", material}}},
+       {"rods[0].edges: must list at least one edge"}},
+      {{{{"edges", {{1, 2, 3}}}, {"material", material}}},
+       {"rods[0].edges[0]: expected an edge [i, j]"}},
+      {{{{"edges", {{1, 2}, {2, 1}}}, {"material", material}}},
+       {"rods[0].edges[1]: edge [2, 1] is listed twice"}},
       {{{{"edges", {{1, -2}}}, {"material", material}}}, {"rods[0].edges[0][1]: a vertex index"}},
-      {{{{"vertices", json::array()}, {"material", material}}}, {"rods[0].vertices: must list at least one"}},
-      {{{{"vertices", {3, 3}}, {"material", material}}}, {"rods[0].vertices[1]: vertex 3 is listed twice"}},
+      {{{{"vertices", json::array()}, {"material", material}}},
+       {"rods[0].vertices: must list at least one"}},
+      {{{{"vertices", {3, 3}}, {"material", material}}},
+       {"rods[0].vertices[1]: vertex 3 is listed twice"}},
       {{{{"vertices", {"a"}}, {"material", material}}}, {"rods[0].vertices[0]", "expected"}},
       {json::object(), {"rods", "expected an array"}},
   };
@@ -458,19 +466,27 @@ TEST_CASE("config: support displacements move only held components") {
   const Config c = parse(with("/supports", pushed));
   CHECK(c.supports[0].displacement == Eigen::Vector3d(0.5, 0, -2));
   CHECK(to_json(c)["supports"][0]["displacement"] == json({0.5, 0.0, -2.0}));
-  CHECK(parse(with("/supports", {{{"vertex", 1}, {"fix", {"position"}}, {"displacement", {1, 2, 3}}}}))
+  CHECK(parse(with("/supports",
+                   {{{"vertex", 1}, {"fix", {"position"}}, {"displacement", {1, 2, 3}}}}))
             .supports[0]
             .displacement == Eigen::Vector3d(1, 2, 3));
-  check_message(rejection(with("/supports", {{{"vertex", 1}, {"fix", {"x", "z"}}, {"displacement", {0, 1, 0}}}})),
-                {"supports[0].displacement[1]: moves the y component", "leaves free", "\"position\" or \"y\""});
   check_message(
-      rejection(with("/supports", {{{"vertex", 1}, {"fix", {"orientation"}}, {"displacement", {1, 0, 0}}}})),
+      rejection(
+          with("/supports", {{{"vertex", 1}, {"fix", {"x", "z"}}, {"displacement", {0, 1, 0}}}})),
+      {"supports[0].displacement[1]: moves the y component", "leaves free",
+       "\"position\" or \"y\""});
+  check_message(
+      rejection(with("/supports",
+                     {{{"vertex", 1}, {"fix", {"orientation"}}, {"displacement", {1, 0, 0}}}})),
       {"supports[0].displacement[0]: moves the x component"});
-  check_message(rejection(with("/supports", {{{"vertex", 1}, {"fix", {"z"}}, {"displacement", {0, 1}}}})),
-                {"supports[0].displacement", "three numbers"});
-  check_message(rejection(with("/supports", {{{"vertex", 1}, {"fix", {"z"}}, {"displacment", {0, 0, 1}}}})),
-                {"in supports[0]", "did you mean \"displacement\"?"});
-  const std::string infinite = R"({"supports": [{"vertex": 1, "fix": ["z"], "displacement": [0, 0, 1e999]}]})";
+  check_message(
+      rejection(with("/supports", {{{"vertex", 1}, {"fix", {"z"}}, {"displacement", {0, 1}}}})),
+      {"supports[0].displacement", "three numbers"});
+  check_message(
+      rejection(with("/supports", {{{"vertex", 1}, {"fix", {"z"}}, {"displacment", {0, 0, 1}}}})),
+      {"in supports[0]", "did you mean \"displacement\"?"});
+  const std::string infinite =
+      R"({"supports": [{"vertex": 1, "fix": ["z"], "displacement": [0, 0, 1e999]}]})";
   check_message(rejection(infinite), {"supports[0].displacement[2]", "overflows to infinity"});
 }
 
@@ -506,19 +522,24 @@ TEST_CASE("config: rods selectors resolve to segments, bad rods and edges are na
         std::vector<double>{3, 3, 3, 3});
 
   const Config out_of_range = parse(with("/rods", {{{"rod", 2}, {"material", narrow}}}));
-  CHECK_THROWS_WITH_AS(segment_materials(out_of_range, graph, topology),
-                       doctest::Contains("c.json: rods[0].rod: rod 2 is out of range; the linkage has 2 rods"),
-                       InputError);
-  const Config no_edge = parse(with("/rods", {{{"edges", {{0, 1}, {1, 2}}}, {"material", narrow}}}));
-  CHECK_THROWS_WITH_AS(segment_materials(no_edge, graph, topology),
-                       "c.json: rods[0].edges[1]: vertices 1 and 2 are not joined by an edge of the linkage",
-                       InputError);
+  CHECK_THROWS_WITH_AS(
+      segment_materials(out_of_range, graph, topology),
+      doctest::Contains("c.json: rods[0].rod: rod 2 is out of range; the linkage has 2 rods"),
+      InputError);
+  const Config no_edge =
+      parse(with("/rods", {{{"edges", {{0, 1}, {1, 2}}}, {"material", narrow}}}));
+  CHECK_THROWS_WITH_AS(
+      segment_materials(no_edge, graph, topology),
+      "c.json: rods[0].edges[1]: vertices 1 and 2 are not joined by an edge of the linkage",
+      InputError);
   const Config bad_vertex = parse(with("/rods", {{{"vertices", {0, 5}}, {"material", narrow}}}));
   CHECK_THROWS_WITH_AS(check_vertices(bad_vertex, graph),
-                       doctest::Contains("c.json: rods[0].vertices[1]: vertex 5 is out of range"), InputError);
+                       doctest::Contains("c.json: rods[0].vertices[1]: vertex 5 is out of range"),
+                       InputError);
   const Config bad_edge = parse(with("/rods", {{{"edges", {{0, 9}}}, {"material", narrow}}}));
   CHECK_THROWS_WITH_AS(check_vertices(bad_edge, graph),
-                       doctest::Contains("c.json: rods[0].edges[0][1]: vertex 9 is out of range"), InputError);
+                       doctest::Contains("c.json: rods[0].edges[0][1]: vertex 9 is out of range"),
+                       InputError);
 }
 
 TEST_CASE("config: check_vertices names the key of an index out of range") {

@@ -13,7 +13,6 @@
 
 namespace xshell::test {
 
-
 #ifdef _OPENMP
 namespace {
 
@@ -39,7 +38,8 @@ Record run_loop(AffineLoop& loop, int count, int threads, int chunk) {
 
 }  // namespace
 
-TEST_CASE("AffineLoop runs every item exactly once, for any team and chunk, and again after a reset") {
+TEST_CASE(
+    "AffineLoop runs every item exactly once, for any team and chunk, and again after a reset") {
   AffineLoop loop;
   int checked = 0;
   for (int threads : {1, 2, 3})
@@ -81,7 +81,9 @@ std::vector<std::vector<int>> run_held_back(AffineLoop& loop, int count, int hel
 }
 }  // namespace
 
-TEST_CASE("AffineLoop: a thread takes its own consecutive range first, and the others' when they are held back") {
+TEST_CASE(
+    "AffineLoop: a thread takes its own consecutive range first, and the others' when they are "
+    "held back") {
   AffineLoop loop;
   const int count = 50;
   std::vector<int> expected(count);

@@ -14,7 +14,6 @@
 
 namespace xshell::test {
 
-
 namespace {
 
 Joint random_rotation_joint(std::mt19937& rng) {

@@ -15,7 +15,6 @@
 
 namespace xshell::test {
 
-
 namespace {
 
 struct NamedGraph {

@@ -15,9 +15,9 @@
 
 namespace xshell::test {
 
-
-TEST_CASE("Real graphs with edge-vector joints: near-parallel joints are refused and the rest build" *
-          doctest::test_suite("validation")) {
+TEST_CASE(
+    "Real graphs with edge-vector joints: near-parallel joints are refused and the rest build" *
+    doctest::test_suite("validation")) {
   const std::filesystem::path dir = XSHELL_SHARED_DATA_DIR;
   if (!std::filesystem::is_directory(dir)) XSHELL_SKIP(dir.string() + " is absent");
   std::vector<std::filesystem::path> files;

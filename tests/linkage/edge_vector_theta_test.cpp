@@ -13,7 +13,6 @@
 
 namespace xshell::test {
 
-
 namespace {
 
 Eigen::Vector3d random_unit(std::mt19937& rng) { return random_vector(3, rng).normalized(); }

@@ -1,12 +1,11 @@
+#include "linkage/graph.hpp"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "linkage/graph.hpp"
-
 namespace xshell::test {
-
 
 TEST_CASE("corner vertices: the extremes along the plan's four diagonals, each once") {
   // A 3 x 2 grid of points, slightly rotated, plus one point inside.

@@ -1,14 +1,15 @@
+#include "linkage/joint_forces.hpp"
+
 #include <doctest/doctest.h>
 
 #include "integrators/beam_fixtures.hpp"
-#include "linkage/joint_forces.hpp"
 #include "linkage/linkage_fixtures.hpp"
 #include "linkage/reactions.hpp"
 
 namespace xshell::test {
 
-
-TEST_CASE("Joint forces: an L of two rods pinned at a corner carries the tip load through the pin") {
+TEST_CASE(
+    "Joint forces: an L of two rods pinned at a corner carries the tip load through the pin") {
   // Rod A along x from the clamp (vertex 0) to the corner (vertex 1), rod B
   // along y from the corner to a free tip (vertex 2) loaded out of plane.
   LineGraph g;
@@ -34,7 +35,8 @@ TEST_CASE("Joint forces: an L of two rods pinned at a corner carries the tip loa
   // from the corner to the tip, about an in-plane axis (the pin turns freely
   // about the normal).
   REQUIRE(f.moment_on.has_value());
-  const Eigen::Vector3d r = problem.linkage().vertex_position(2) - problem.linkage().vertex_position(1);
+  const Eigen::Vector3d r =
+      problem.linkage().vertex_position(2) - problem.linkage().vertex_position(1);
   const Eigen::Vector3d expected = -r.cross(load);
   CHECK(((*f.moment_on)[b] - expected).norm() <= 1e-5 * expected.norm());
   CHECK(((*f.moment_on)[a] + expected).norm() <= 1e-5 * expected.norm());

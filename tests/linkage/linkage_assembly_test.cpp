@@ -16,7 +16,6 @@
 
 namespace xshell::test {
 
-
 namespace {
 
 StaticsSetup loads(bool supported) {
@@ -24,12 +23,15 @@ StaticsSetup loads(bool supported) {
   setup.gravity = Eigen::Vector3d(0.2, -0.1, -7.0);
   setup.forces = {{0, Eigen::Vector3d(0.1, 0.0, -0.3)}};
   // Vertex 0 is a joint in every graph used here.
-  if (supported) setup.supports = {{0, {SupportDof::Orientation, SupportDof::OpeningAngle}}, {1, {SupportDof::Z}}};
+  if (supported)
+    setup.supports = {{0, {SupportDof::Orientation, SupportDof::OpeningAngle}},
+                      {1, {SupportDof::Z}}};
   return setup;
 }
 
 // The free Hessian from RodLinkage::hessian (dense local chain rule).
-Eigen::MatrixXd reference_free_hessian(const LinkageProblem& problem, const std::vector<Eigen::VectorXd>& forces) {
+Eigen::MatrixXd reference_free_hessian(const LinkageProblem& problem,
+                                       const std::vector<Eigen::VectorXd>& forces) {
   const Eigen::MatrixXd full(problem.linkage().hessian(&forces));
   const std::vector<int>& free = problem.free_indices();
   Eigen::MatrixXd h(free.size(), free.size());
@@ -39,7 +41,8 @@ Eigen::MatrixXd reference_free_hessian(const LinkageProblem& problem, const std:
 }
 
 // Gravity as the problem applies it, on the full variables of every segment.
-std::vector<Eigen::VectorXd> gravity_forces(const RodLinkage& linkage, const Eigen::Vector3d& gravity) {
+std::vector<Eigen::VectorXd> gravity_forces(const RodLinkage& linkage,
+                                            const Eigen::Vector3d& gravity) {
   std::vector<Eigen::VectorXd> f;
   for (int s = 0; s < linkage.num_segments(); ++s) {
     const ElasticRod& rod = linkage.segment(s);
@@ -62,7 +65,8 @@ TEST_CASE("Assembled free gradient and Hessian equal the plain chain rule, patte
       for (bool supported : {false, true}) {
         CAPTURE(subdivisions);
         CAPTURE(supported);
-        LinkageProblem problem(RodLinkage(g, test_options(RestShape::Straight, subdivisions)), loads(supported));
+        LinkageProblem problem(RodLinkage(g, test_options(RestShape::Straight, subdivisions)),
+                               loads(supported));
         problem.set_free_dofs(problem.free_dofs() + random_vector(problem.num_free(), rng, 0.05));
         problem.rebase();
         // Away from the update too: the kernels are exact there.
@@ -90,7 +94,8 @@ TEST_CASE("Assembled free gradient and Hessian equal the plain chain rule, patte
         Eigen::VectorXd g_full = problem.linkage().gradient(&forces);
         const int joint = problem.linkage().topology().joint_of_vertex[0];
         REQUIRE(joint >= 0);
-        g_full.segment<3>(problem.linkage().joint_dof_offset(joint) + kPosition) -= setup.forces[0].force;
+        g_full.segment<3>(problem.linkage().joint_dof_offset(joint) + kPosition) -=
+            setup.forces[0].force;
         Eigen::VectorXd g_ref(problem.num_free());
         for (int i = 0; i < problem.num_free(); ++i) g_ref[i] = g_full[problem.free_indices()[i]];
         CHECK((g_free - g_ref).cwiseAbs().maxCoeff() <= 1e-12 * g_ref.cwiseAbs().maxCoeff());
@@ -103,7 +108,9 @@ TEST_CASE("Assembled free gradient and Hessian equal the plain chain rule, patte
   CHECK(compared > 10000);
 }
 
-TEST_CASE("Rotation joints: the geometry's derivatives by hand equal second-order AD over all six parameters") {
+TEST_CASE(
+    "Rotation joints: the geometry's derivatives by hand equal second-order AD over all six "
+    "parameters") {
   std::mt19937 rng(31);
   int compared = 0;
   for (int trial = 0; trial < 30; ++trial) {
@@ -122,7 +129,8 @@ TEST_CASE("Rotation joints: the geometry's derivatives by hand equal second-orde
     joint_geometry_derivatives(joint, fast);
     joint_geometry_derivatives_by_ad(joint, ad);
     CHECK((fast.value - ad.value).cwiseAbs().maxCoeff() <= 1e-14 * ad.value.cwiseAbs().maxCoeff());
-    CHECK((fast.jacobian - ad.jacobian).cwiseAbs().maxCoeff() <= 1e-14 * ad.jacobian.cwiseAbs().maxCoeff());
+    CHECK((fast.jacobian - ad.jacobian).cwiseAbs().maxCoeff() <=
+          1e-14 * ad.jacobian.cwiseAbs().maxCoeff());
     for (int k = 0; k < 9; ++k) {
       const double hscale = std::max(ad.hessians[k].cwiseAbs().maxCoeff(), 1e-3);
       CHECK((fast.hessians[k] - ad.hessians[k]).cwiseAbs().maxCoeff() <= 1e-13 * hscale);
@@ -133,7 +141,8 @@ TEST_CASE("Rotation joints: the geometry's derivatives by hand equal second-orde
   CHECK(compared == 30 * 9 * 36);
 }
 
-TEST_CASE("Terminal-edge derivatives from the joint's geometry equal AD over the joint's parameters") {
+TEST_CASE(
+    "Terminal-edge derivatives from the joint's geometry equal AD over the joint's parameters") {
   std::mt19937 rng(29);
   int compared = 0;
   for (int trial = 0; trial < 20; ++trial) {
@@ -153,8 +162,10 @@ TEST_CASE("Terminal-edge derivatives from the joint's geometry equal AD over the
     for (int label = 0; label < 2; ++label)
       for (int sign : {-1, 1}) {
         const Eigen::Vector3d t = sign * joint.tangent(label);
-        const Eigen::Vector3d t_hat = (t + 0.3 * Eigen::Vector3d(random_vector(3, rng))).normalized();
-        const SourceFrame source{t_hat, Eigen::Vector3d(random_vector(3, rng)).cross(t_hat).normalized()};
+        const Eigen::Vector3d t_hat =
+            (t + 0.3 * Eigen::Vector3d(random_vector(3, rng))).normalized();
+        const SourceFrame source{t_hat,
+                                 Eigen::Vector3d(random_vector(3, rng)).cross(t_hat).normalized()};
         const double hint = random_vector(1, rng, 3.0)[0];
         Eigen::Matrix<double, 7, 9> j_ref, j_first;
         JointHessian h_ref[7];
@@ -188,11 +199,13 @@ TEST_CASE("Terminal-edge derivatives from the joint's geometry equal AD over the
 TEST_CASE("Assembly is deterministic: 1 and 2 threads give bit-identical results") {
 #ifdef _OPENMP
   std::mt19937 rng(23);
-  LinkageProblem problem(RodLinkage(grid(4, 4, 0.3), test_options(RestShape::Straight, 5)), loads(false));
+  LinkageProblem problem(RodLinkage(grid(4, 4, 0.3), test_options(RestShape::Straight, 5)),
+                         loads(false));
   const Eigen::VectorXd q = problem.free_dofs() + random_vector(problem.num_free(), rng, 0.05);
   const int before = omp_get_max_threads();
   // Setting q again before each call discards the problem's cached results.
-  auto evaluate = [&](int threads, Eigen::VectorXd& g, Eigen::SparseMatrix<double>& h, Eigen::VectorXd& gh) {
+  auto evaluate = [&](int threads, Eigen::VectorXd& g, Eigen::SparseMatrix<double>& h,
+                      Eigen::VectorXd& gh) {
     omp_set_num_threads(threads);
     problem.set_free_dofs(q);
     g = problem.free_gradient();
@@ -219,7 +232,8 @@ TEST_CASE("Assembly is deterministic: 1 and 2 threads give bit-identical results
 
 TEST_CASE("The Hessian pass gives the gradient too, and both are recomputed after any change") {
   std::mt19937 rng(41);
-  LinkageProblem problem(RodLinkage(grid(3, 4, 0.3), test_options(RestShape::Straight, 4)), loads(true));
+  LinkageProblem problem(RodLinkage(grid(3, 4, 0.3), test_options(RestShape::Straight, 4)),
+                         loads(true));
   const Eigen::VectorXd q = problem.free_dofs() + random_vector(problem.num_free(), rng, 0.05);
   problem.set_free_dofs(q);
   const Eigen::VectorXd g = problem.free_gradient();
@@ -236,7 +250,8 @@ TEST_CASE("The Hessian pass gives the gradient too, and both are recomputed afte
   problem.set_free_dofs(q2);
   const Eigen::SparseMatrix<double> h2 = problem.free_hessian();
   const Eigen::VectorXd g2 = problem.free_gradient();
-  LinkageProblem fresh(RodLinkage(grid(3, 4, 0.3), test_options(RestShape::Straight, 4)), loads(true));
+  LinkageProblem fresh(RodLinkage(grid(3, 4, 0.3), test_options(RestShape::Straight, 4)),
+                       loads(true));
   fresh.set_free_dofs(q2);
   CHECK((g2 - fresh.free_gradient()).cwiseAbs().maxCoeff() <= 1e-12 * g2.cwiseAbs().maxCoeff());
   CHECK((h2 - h_copy).norm() > 1e-6 * h_copy.norm());
@@ -250,7 +265,8 @@ TEST_CASE("The Hessian pass gives the gradient too, and both are recomputed afte
   // Setting the same unknowns again recomputes the rods' terminal edges
   // from the folded joints (equal to round-off).
   problem.set_dofs(problem.dofs());
-  CHECK((g_rebased - problem.free_gradient()).cwiseAbs().maxCoeff() <= 1e-12 * g2.cwiseAbs().maxCoeff());
+  CHECK((g_rebased - problem.free_gradient()).cwiseAbs().maxCoeff() <=
+        1e-12 * g2.cwiseAbs().maxCoeff());
 }
 
 }  // namespace xshell::test

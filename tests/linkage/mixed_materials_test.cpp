@@ -10,7 +10,6 @@
 
 namespace xshell::test {
 
-
 namespace {
 
 // Segment s gets one of three materials that differ in modulus, Poisson

@@ -1,11 +1,11 @@
+#include "linkage/reactions.hpp"
+
 #include <doctest/doctest.h>
 
 #include "integrators/beam_fixtures.hpp"
 #include "linkage/linkage_fixtures.hpp"
-#include "linkage/reactions.hpp"
 
 namespace xshell::test {
-
 
 namespace {
 
@@ -35,12 +35,14 @@ TEST_CASE("Support reactions balance the applied forces and moments") {
   SUBCASE("grid under gravity and point loads on pins and a clamp (rotation joints)") {
     StaticsSetup setup;
     setup.gravity = Eigen::Vector3d(0.3, -0.2, -9.81);
-    setup.forces = {{4, Eigen::Vector3d(0.02, 0.01, -0.05)}, {7, Eigen::Vector3d(-0.01, 0.03, 0.02)}};
+    setup.forces = {{4, Eigen::Vector3d(0.02, 0.01, -0.05)},
+                    {7, Eigen::Vector3d(-0.01, 0.03, 0.02)}};
     setup.supports = {{0, {SupportDof::Position, SupportDof::Orientation}},
                       {2, {SupportDof::Position}},
                       {6, {SupportDof::Z, SupportDof::X}},
                       {8, {SupportDof::Position}}};
-    LinkageProblem problem(RodLinkage(grid(3, 3, 0.3), test_options(RestShape::Straight, 5)), setup);
+    LinkageProblem problem(RodLinkage(grid(3, 3, 0.3), test_options(RestShape::Straight, 5)),
+                           setup);
     const NewtonResult result = relax(problem);
     REQUIRE(result.converged());
     check_balance(problem, checked);
@@ -68,7 +70,8 @@ TEST_CASE("Support reactions balance the applied forces and moments") {
     StaticsSetup setup;
     setup.gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
     setup.forces = {{2, Eigen::Vector3d(0.01, 0.02, -0.03)}};
-    setup.supports = {{1, {SupportDof::Orientation}}, {3, {SupportDof::Position}}, {4, {SupportDof::Position}}};
+    setup.supports = {
+        {1, {SupportDof::Orientation}}, {3, {SupportDof::Position}}, {4, {SupportDof::Position}}};
     LinkageProblem problem(RodLinkage(single_x(), test_options(RestShape::Input, 6)), setup);
     const NewtonResult result = relax(problem);
     REQUIRE(result.converged());

@@ -9,7 +9,6 @@
 
 namespace xshell::test {
 
-
 // Builds a linkage from every graph of the reference implementation (when
 // ../shared/data/elasticrods is present) and reports its size.
 TEST_CASE("Every real linkage graph builds with joints opening in (0 pi) and zero input energy" *
@@ -37,10 +36,10 @@ TEST_CASE("Every real linkage graph builds with joints opening in (0 pi) and zer
     }
     const double scale = linkage.segment(0).stiffness().stretching;
     CHECK(linkage.energy().total() <= 1e-16 * scale * graph.edges.size());
-    MESSAGE(path.filename().string() << ": " << linkage.num_joints() << " joints, " << linkage.num_segments()
-                                     << " segments, " << linkage.topology().rods.size() << " rods, "
-                                     << linkage.num_dofs() << " unknowns, " << collinear
-                                     << " near-collinear joints");
+    MESSAGE(path.filename().string()
+            << ": " << linkage.num_joints() << " joints, " << linkage.num_segments()
+            << " segments, " << linkage.topology().rods.size() << " rods, " << linkage.num_dofs()
+            << " unknowns, " << collinear << " near-collinear joints");
     ++built;
   }
   CHECK(built == static_cast<int>(files.size()));

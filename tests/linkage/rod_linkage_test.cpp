@@ -7,7 +7,6 @@
 
 namespace xshell::test {
 
-
 namespace {
 
 struct NamedGraph {
@@ -28,7 +27,8 @@ std::vector<Eigen::VectorXd> test_forces(const RodLinkage& linkage) {
   for (int s = 0; s < linkage.num_segments(); ++s) {
     const ElasticRod& rod = linkage.segment(s);
     Eigen::VectorXd fs = Eigen::VectorXd::Zero(rod.num_dofs());
-    for (int k = 0; k < rod.num_nodes(); ++k) fs.segment<3>(3 * k) = Eigen::Vector3d(0.1, -0.2, -0.5);
+    for (int k = 0; k < rod.num_nodes(); ++k)
+      fs.segment<3>(3 * k) = Eigen::Vector3d(0.1, -0.2, -0.5);
     f.push_back(fs);
   }
   return f;
@@ -175,7 +175,8 @@ TEST_CASE("Updating frames and folding joints change neither configuration nor e
     // the material frames may not.
     CHECK((q.head(3 * rod.num_nodes()) - before[s].head(3 * rod.num_nodes())).norm() < 1e-12);
   }
-  for (int j = 0; j < linkage.num_joints(); ++j) CHECK(linkage.joint(j).params().segment<3>(kOmega).norm() == 0.0);
+  for (int j = 0; j < linkage.num_joints(); ++j)
+    CHECK(linkage.joint(j).params().segment<3>(kOmega).norm() == 0.0);
 }
 
 TEST_CASE("The gradient is orthogonal to rigid motions of the linkage") {

@@ -1,20 +1,20 @@
+#include "linkage/rod_stresses.hpp"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
 
 #include "integrators/beam_fixtures.hpp"
 #include "linkage/reactions.hpp"
-#include "linkage/rod_stresses.hpp"
 
 namespace xshell::test {
-
 
 namespace {
 
 // A cantilever of length 1 along x, w x h rectangle, clamped at vertex 0;
 // the tip load is set after construction, along a director of the rod.
-LinkageProblem rectangular_cantilever(int n, double w, double h, double young, int director, double load,
-                                      double strength) {
+LinkageProblem rectangular_cantilever(int n, double w, double h, double young, int director,
+                                      double load, double strength) {
   LineGraph g;
   g.vertices = {{0, 0, 0}, {1, 0, 0}};
   g.edges = {{0, 1}};
@@ -72,7 +72,8 @@ TEST_CASE("Cantilever: bending moments and the largest bending stress follow bea
     CHECK(s.max_normal_stress.value == doctest::Approx(sigma).epsilon(1e-3).scale(0.0));
     CHECK(s.max_normal_stress.segment == 0);
     CHECK(s.max_normal_stress.edge == 0);
-    CHECK(s.max_normal_stress.value == doctest::Approx(load * c / inertia).epsilon(1.5 * l).scale(0.0));
+    CHECK(s.max_normal_stress.value ==
+          doctest::Approx(load * c / inertia).epsilon(1.5 * l).scale(0.0));
     // Utilisation: the equivalent stress over the strength, largest at the root.
     REQUIRE(s.max_utilisation.has_value());
     CHECK(s.max_utilisation->value == doctest::Approx(edges[0].equivalent / strength).scale(0.0));
@@ -91,7 +92,8 @@ TEST_CASE("Axial force and stress of a rod in tension") {
     StaticsSetup setup;
     setup.supports = {{0, {SupportDof::Orientation}}};
     setup.forces = {{1, Eigen::Vector3d(50.0, 0, 0)}};
-    pulled = LinkageProblem(RodLinkage(pulled.linkage().graph(), pulled.linkage().options()), setup);
+    pulled =
+        LinkageProblem(RodLinkage(pulled.linkage().graph(), pulled.linkage().options()), setup);
   }
   REQUIRE(relax(pulled).converged());
   const LinkageStresses s = linkage_stresses(pulled.linkage());
@@ -151,10 +153,13 @@ TEST_CASE("Two rods with different sections: stresses follow each rod's own sect
     CAPTURE(s);
     const EdgeStress& root = stresses.segments[s][0];
     // (scale 0: relative tolerances, the loads are small numbers.)
-    CHECK(std::abs(root.forces.moment1) == doctest::Approx(load[s] * (1.0 - l)).epsilon(1e-3).scale(0.0));
+    CHECK(std::abs(root.forces.moment1) ==
+          doctest::Approx(load[s] * (1.0 - l)).epsilon(1e-3).scale(0.0));
     CHECK(root.stresses.max_normal == doctest::Approx(sigma[s]).epsilon(1e-3).scale(0.0));
     CHECK(root.utilisation.has_value());
-    if (root.utilisation) CHECK(*root.utilisation == doctest::Approx(root.equivalent / beams[s].strength).epsilon(1e-12).scale(0.0));
+    if (root.utilisation)
+      CHECK(*root.utilisation ==
+            doctest::Approx(root.equivalent / beams[s].strength).epsilon(1e-12).scale(0.0));
     ++checked;
   }
   CHECK(checked == 2);
@@ -165,7 +170,8 @@ TEST_CASE("Two rods with different sections: stresses follow each rod's own sect
   CHECK(stresses.max_normal_stress.rod == problem.linkage().topology().segments[1].rod);
   REQUIRE(stresses.max_utilisation.has_value());
   const double u0 = *stresses.segments[0][0].utilisation, u1 = *stresses.segments[1][0].utilisation;
-  CHECK(stresses.max_utilisation->value == doctest::Approx(std::max(u0, u1)).epsilon(1e-12).scale(0.0));
+  CHECK(stresses.max_utilisation->value ==
+        doctest::Approx(std::max(u0, u1)).epsilon(1e-12).scale(0.0));
 }
 
 }  // namespace xshell::test

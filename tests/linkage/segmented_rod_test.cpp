@@ -7,13 +7,12 @@
 
 namespace xshell::test {
 
-
 namespace {
 // Rod A runs straight along x through two valence-4 joints, cut into three
 // segments; short crossing rods make the joints.
 LineGraph straight_rod_with_crossings() {
   LineGraph g;
-  g.vertices = {{0, 0, 0}, {1, 0, 0}, {2.2, 0, 0}, {3, 0, 0},  // rod A
+  g.vertices = {{0, 0, 0},     {1, 0, 0},      {2.2, 0, 0},   {3, 0, 0},  // rod A
                 {1.3, 0.8, 0}, {0.7, -0.8, 0}, {2.0, 0.9, 0}, {2.4, -0.9, 0}};
   g.edges = {{0, 1}, {1, 2}, {2, 3}, {4, 1}, {1, 5}, {6, 2}, {2, 7}};
   return g;

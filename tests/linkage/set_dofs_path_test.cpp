@@ -11,8 +11,8 @@
 
 namespace xshell::test {
 
-
-TEST_CASE("set_dofs does not depend on the points visited before: a joint turned past pi and back") {
+TEST_CASE(
+    "set_dofs does not depend on the points visited before: a joint turned past pi and back") {
   RodLinkage linkage(grid(3, 3, 0.2), test_options(RestShape::Straight));
   const Eigen::VectorXd start = linkage.dofs();
   const double energy = linkage.energy().total();
@@ -41,7 +41,8 @@ TEST_CASE("set_dofs does not depend on the points visited before: a joint turned
     linkage.set_dofs(r);
     CHECK(std::isfinite(linkage.energy().total()));
     const std::vector<double> now = terminal_thetas();
-    for (size_t i = 0; i < now.size(); ++i) travelled[i] += std::remainder(now[i] - previous[i], 2.0 * M_PI);
+    for (size_t i = 0; i < now.size(); ++i)
+      travelled[i] += std::remainder(now[i] - previous[i], 2.0 * M_PI);
     previous = now;
     ++visited;
   }
@@ -66,8 +67,8 @@ TEST_CASE("set_dofs does not depend on the points visited before: a joint turned
   const double energy_here = linkage.energy().total();
   Eigen::VectorXd far = here;
   for (int k = 1; k <= 8; ++k) {
-    far.segment<3>(linkage.joint_dof_offset(j) + kOmega) = here.segment<3>(linkage.joint_dof_offset(j) + kOmega) +
-                                                          0.5 * k * axis;
+    far.segment<3>(linkage.joint_dof_offset(j) + kOmega) =
+        here.segment<3>(linkage.joint_dof_offset(j) + kOmega) + 0.5 * k * axis;
     linkage.set_dofs(far);
   }
   linkage.set_dofs(here);

@@ -1,14 +1,14 @@
+#include "linkage/statics_problem.hpp"
+
 #include <doctest/doctest.h>
 
 #include <random>
 
 #include "finite_differences.hpp"
 #include "linkage/model_error.hpp"
-#include "linkage/statics_problem.hpp"
 #include "linkage_fixtures.hpp"
 
 namespace xshell::test {
-
 
 namespace {
 StaticsSetup loaded_setup() {
@@ -47,10 +47,12 @@ TEST_CASE("Problem gradient and Hessian with gravity and point loads match finit
   CHECK(checked > 1000);
 }
 
-TEST_CASE("Setting the unknowns with the energy in one pass gives energy() bit for bit, loads included") {
+TEST_CASE(
+    "Setting the unknowns with the energy in one pass gives energy() bit for bit, loads included") {
   std::mt19937 rng(41);
   // 40 segments: above the size at which segments are set in parallel.
-  LinkageProblem problem(RodLinkage(grid(5, 5, 0.3), test_options(RestShape::Straight)), loaded_setup());
+  LinkageProblem problem(RodLinkage(grid(5, 5, 0.3), test_options(RestShape::Straight)),
+                         loaded_setup());
   REQUIRE(problem.linkage().num_segments() >= 32);
   const Eigen::VectorXd start = problem.free_dofs();
   for (int trial = 0; trial < 3; ++trial) {
@@ -86,7 +88,8 @@ TEST_CASE("Without supports the joint nearest the centre is pinned, supports are
 
 TEST_CASE("A rebase carries the velocity over: the motion it describes is unchanged") {
   std::mt19937 rng(12);
-  LinkageProblem problem(RodLinkage(grid(3, 3, 0.3), test_options(RestShape::Straight)), StaticsSetup{});
+  LinkageProblem problem(RodLinkage(grid(3, 3, 0.3), test_options(RestShape::Straight)),
+                         StaticsSetup{});
   problem.set_free_dofs(problem.free_dofs() + random_vector(problem.num_free(), rng, 0.05));
   problem.rebase();
   // Move away from the rebased state so that omega != 0 and the frames are
@@ -118,7 +121,9 @@ TEST_CASE("A rebase carries the velocity over: the motion it describes is unchan
   const double h = 1e-3;
   const Eigen::VectorXd a = state_after(problem, v, h);
   const double error = (a - state_after(rebased, v_new, h)).cwiseAbs().maxCoeff();
-  const double half = (state_after(problem, v, 0.5 * h) - state_after(rebased, v_new, 0.5 * h)).cwiseAbs().maxCoeff();
+  const double half = (state_after(problem, v, 0.5 * h) - state_after(rebased, v_new, 0.5 * h))
+                          .cwiseAbs()
+                          .maxCoeff();
   const double untransformed = (a - state_after(rebased, v, h)).cwiseAbs().maxCoeff();
   CHECK(error / half == doctest::Approx(4.0).epsilon(0.05));
   CHECK(untransformed > 100.0 * error);

@@ -11,7 +11,6 @@
 
 namespace xshell::test {
 
-
 namespace {
 
 // The unit beam (E I = 1) clamped at vertex 0; the tip (vertex 1) is held

@@ -1,9 +1,10 @@
+#include "math/dual.hpp"
+
 #include <doctest/doctest.h>
 
 #include <random>
 
 #include "finite_differences.hpp"
-#include "math/dual.hpp"
 #include "math/rotation.hpp"
 
 namespace xshell::test {
@@ -20,7 +21,8 @@ T composite(const T* x) {
   using std::sin;
   using std::sqrt;
   const T a = x[0] * x[1] - x[2] / (1.5 + x[0] * x[0]);
-  return sqrt(2.0 + a * a) * sin(x[1]) + cos(x[2] - 0.3) / x[3] + atan2(x[0] + 0.1, x[3] - x[2]) - 3.0 * a;
+  return sqrt(2.0 + a * a) * sin(x[1]) + cos(x[2] - 0.3) / x[3] + atan2(x[0] + 0.1, x[3] - x[2]) -
+         3.0 * a;
 }
 
 template <int N, class F>
@@ -106,10 +108,13 @@ TEST_CASE("Parallel transport takes a to b, preserves lengths and fixes a x b") 
     const Eigen::Vector3d b = xshell::test::random_vector(3, rng).normalized();
     if (a.dot(b) < -0.9) continue;
     const Eigen::Vector3d v = xshell::test::random_vector(3, rng);
-    const Eigen::Vector3d pa = parallel_transport(V3<double>(a), V3<double>(b), V3<double>(a)).values();
-    const Eigen::Vector3d pv = parallel_transport(V3<double>(a), V3<double>(b), V3<double>(v)).values();
+    const Eigen::Vector3d pa =
+        parallel_transport(V3<double>(a), V3<double>(b), V3<double>(a)).values();
+    const Eigen::Vector3d pv =
+        parallel_transport(V3<double>(a), V3<double>(b), V3<double>(v)).values();
     const Eigen::Vector3d axis = a.cross(b);
-    const Eigen::Vector3d paxis = parallel_transport(V3<double>(a), V3<double>(b), V3<double>(axis)).values();
+    const Eigen::Vector3d paxis =
+        parallel_transport(V3<double>(a), V3<double>(b), V3<double>(axis)).values();
     CHECK((pa - b).norm() < 1e-14);
     CHECK(pv.norm() == doctest::Approx(v.norm()).epsilon(1e-13));
     CHECK((paxis - axis).norm() < 1e-14);

@@ -1,10 +1,9 @@
 #include <doctest/doctest.h>
 
-#include "rod_fixtures.hpp"
 #include "rod/stretching.hpp"
+#include "rod_fixtures.hpp"
 
 namespace xshell::test {
-
 
 namespace {
 // Energy, gradient and Hessian of a copy of `rod` moved to q (the source
@@ -43,7 +42,8 @@ int check_rod_derivatives(const ElasticRod& rod, double gradient_tol, double hes
 }  // namespace
 
 TEST_CASE("Rod gradient and Hessian of every term match finite differences") {
-  const TermCase terms[] = {{"stretching", 1, 0, 0}, {"bending", 0, 1, 0}, {"twisting", 0, 0, 1}, {"all", 1, 1, 1}};
+  const TermCase terms[] = {
+      {"stretching", 1, 0, 0}, {"bending", 0, 1, 0}, {"twisting", 0, 0, 1}, {"all", 1, 1, 1}};
   std::mt19937 rng(2024);
   int checked = 0;
   for (const TermCase& term : terms) {
@@ -156,7 +156,8 @@ TEST_CASE("Three nodes with turning angle phi: |kb| = 2 tan(phi/2) and E_bend = 
   for (double phi : {0.1, 0.7, 1.5, 2.5}) {
     const std::vector<Eigen::Vector3d> straight = {{-1, 0, 0}, {0, 0, 0}, {1, 0, 0}};
     ElasticRod rod(straight, k);  // straight at rest, unit edges, V = 1
-    const std::vector<Eigen::Vector3d> bent = {{-1, 0, 0}, {0, 0, 0}, {std::cos(phi), std::sin(phi), 0}};
+    const std::vector<Eigen::Vector3d> bent = {
+        {-1, 0, 0}, {0, 0, 0}, {std::cos(phi), std::sin(phi), 0}};
     rod.set_configuration(bent, rod.thetas());
     const VertexStrains<double> s = rod.strains(1);
     CHECK(norm(s.kb) == doctest::Approx(2.0 * std::tan(0.5 * phi)).epsilon(1e-13));

@@ -1,3 +1,5 @@
+#include "rod/section_stress.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -5,15 +7,13 @@
 #include <initializer_list>
 #include <utility>
 
-#include "rod/section_stress.hpp"
-
 namespace xshell::test {
-
 
 TEST_CASE("Section moduli agree with the stiffnesses and textbook torsion formulas") {
   int checked = 0;
   for (SectionShape shape : {SectionShape::Rectangle, SectionShape::Ellipse})
-    for (const std::pair<double, double>& size : {std::pair{0.02, 0.007}, std::pair{0.007, 0.02}, std::pair{0.01, 0.01}}) {
+    for (const std::pair<double, double>& size :
+         {std::pair{0.02, 0.007}, std::pair{0.007, 0.02}, std::pair{0.01, 0.01}}) {
       const double w = size.first, h = size.second;
       Material m;
       m.young_modulus = 3.0e9;
@@ -56,14 +56,16 @@ TEST_CASE("Combined normal stress: corners of a rectangle, the boundary of an el
         y1 = m.c1 * std::cos(a) / s;
         y2 = m.c2 * std::sin(a) / s;
       }
-      best = std::max(best, std::abs(f.axial / m.area + f.moment1 * y1 / m.i_d2 + f.moment2 * y2 / m.i_d1));
+      best = std::max(
+          best, std::abs(f.axial / m.area + f.moment1 * y1 / m.i_d2 + f.moment2 * y2 / m.i_d1));
     }
     return best;
   };
   CHECK(sr.max_normal == doctest::Approx(brute(r, f, false)).epsilon(1e-6));
   const SectionModuli e = section_moduli({SectionShape::Ellipse, 0.04, 0.03});
   const SectionForces bending{0.0, f.moment1, f.moment2, 0.0};
-  CHECK(section_stresses(e, bending).max_normal == doctest::Approx(brute(e, bending, true)).epsilon(1e-6));
+  CHECK(section_stresses(e, bending).max_normal ==
+        doctest::Approx(brute(e, bending, true)).epsilon(1e-6));
   CHECK(sr.torsional_shear == doctest::Approx(0.7 / r.torsion_modulus));
 }
 

@@ -7,11 +7,10 @@
 
 #include <random>
 
-#include "rod_fixtures.hpp"
 #include "rod/vertex_stencil.hpp"
+#include "rod_fixtures.hpp"
 
 namespace xshell::test {
-
 
 namespace {
 
@@ -33,7 +32,8 @@ RandomStencil random_stencil(std::mt19937& rng, double offset) {
   c.q << x0, x0 + e0, x0 + e0 + e1, random_vector(2, rng, 3.0);
   const Eigen::Vector3d e[2] = {e0, e1};
   for (int j = 0; j < 2; ++j) {
-    const Eigen::Vector3d t = (e[j].normalized() + offset * Eigen::Vector3d(random_vector(3, rng))).normalized();
+    const Eigen::Vector3d t =
+        (e[j].normalized() + offset * Eigen::Vector3d(random_vector(3, rng))).normalized();
     c.s.source[j].tangent = t;
     c.s.source[j].d1 = Eigen::Vector3d(random_vector(3, rng)).cross(t).normalized();
   }
@@ -82,7 +82,9 @@ TEST_CASE("Fast vertex kernels equal the second-order AD kernel at random stenci
   CHECK(compared == 120 * (2 * 11 + 121));
 }
 
-TEST_CASE("Rod gradient and Hessian from the fast kernels: one pass equals the separate paths, pattern holds") {
+TEST_CASE(
+    "Rod gradient and Hessian from the fast kernels: one pass equals the separate paths, pattern "
+    "holds") {
   std::mt19937 rng(5);
   int checked = 0;
   for (int trial = 0; trial < 4; ++trial) {
@@ -99,8 +101,10 @@ TEST_CASE("Rod gradient and Hessian from the fast kernels: one pass equals the s
     int outside = 0, inside = 0;
     for (int c = 0; c < rod.num_dofs(); ++c)
       for (int r = 0; r < rod.num_dofs(); ++r) {
-        if (pattern(r, c)) ++inside;
-        else if (h(r, c) != 0.0) ++outside;
+        if (pattern(r, c))
+          ++inside;
+        else if (h(r, c) != 0.0)
+          ++outside;
       }
     CHECK(outside == 0);
     CHECK(inside < rod.num_dofs() * rod.num_dofs());

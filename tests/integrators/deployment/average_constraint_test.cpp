@@ -5,14 +5,13 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "integrators/deployment/deployment_fixtures.hpp"
 #include "finite_differences.hpp"
-#include "integrators/deployment/constrained_objective.hpp"
 #include "integrators/common/linkage_objective.hpp"
+#include "integrators/deployment/constrained_objective.hpp"
+#include "integrators/deployment/deployment_fixtures.hpp"
 #include "linkage/joint.hpp"
 
 namespace xshell::test {
-
 
 namespace {
 

@@ -6,13 +6,12 @@
 #include <cmath>
 #include <random>
 
-#include "integrators/deployment/deployment_fixtures.hpp"
 #include "finite_differences.hpp"
-#include "integrators/deployment/average_constraint.hpp"
 #include "integrators/common/linkage_objective.hpp"
+#include "integrators/deployment/average_constraint.hpp"
+#include "integrators/deployment/deployment_fixtures.hpp"
 
 namespace xshell::test {
-
 
 namespace {
 

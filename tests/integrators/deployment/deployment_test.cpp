@@ -5,11 +5,10 @@
 #include <cmath>
 #include <vector>
 
-#include "integrators/deployment/deployment_fixtures.hpp"
 #include "integrators/deployment/average_constraint.hpp"
+#include "integrators/deployment/deployment_fixtures.hpp"
 
 namespace xshell::test {
-
 
 namespace {
 

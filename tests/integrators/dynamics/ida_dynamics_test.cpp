@@ -1,3 +1,5 @@
+#include "integrators/dynamics/ida_dynamics.hpp"
+
 #include <doctest/doctest.h>
 
 #include <atomic>
@@ -5,14 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "integrators/dynamics/ida_dynamics.hpp"
+#include "integrators/common/objective_evaluator.hpp"
 #include "integrators/dynamics/ida_system.hpp"
 #include "integrators/newton/newton.hpp"
-#include "integrators/common/objective_evaluator.hpp"
 #include "integrators/toy_objectives.hpp"
 
 namespace xshell::test {
-
 
 namespace {
 
@@ -157,10 +157,9 @@ TEST_CASE("damped dynamics near the column's saddle") {
       // 1e-3) bounds each step's energy error; the rises seen while the
       // column buckles are 1e-6 of the drop (first order, Rayleigh damping).
       CHECK(run.max_total_energy_rise() <= 1e-5 * (run.reports.front().energy - run.result.energy));
-      MESSAGE("column from imperfection 1e-4, " << label(tight(form, MassModel::Physical)) << ": "
-                                                << run.result.steps << " steps ("
-                                                << run.result.rejected_steps
-                                                << " rejected: E + K rose), t = " << run.result.time);
+      MESSAGE("column from imperfection 1e-4, "
+              << label(tight(form, MassModel::Physical)) << ": " << run.result.steps << " steps ("
+              << run.result.rejected_steps << " rejected: E + K rose), t = " << run.result.time);
     }
   }
   SUBCASE("on the saddle, steps are held below a failed factorization") {
@@ -180,12 +179,12 @@ TEST_CASE("damped dynamics near the column's saddle") {
         REQUIRE(runs[cap].status == DynamicsStatus::Converged);
         CHECK_FALSE(runs[cap].stable);
       }
-      MESSAGE("straight column on its saddle, " << label(tight(form, MassModel::Physical))
-                                                << ": steps, factorizations (convergence failures) "
-                                                << runs[0].steps << ", " << runs[0].factorizations << " ("
-                                                << runs[0].convergence_failures << ") without the step cap, "
-                                                << runs[1].steps << ", " << runs[1].factorizations << " ("
-                                                << runs[1].convergence_failures << ") with it");
+      MESSAGE("straight column on its saddle, "
+              << label(tight(form, MassModel::Physical))
+              << ": steps, factorizations (convergence failures) " << runs[0].steps << ", "
+              << runs[0].factorizations << " (" << runs[0].convergence_failures
+              << ") without the step cap, " << runs[1].steps << ", " << runs[1].factorizations
+              << " (" << runs[1].convergence_failures << ") with it");
       CHECK((ends[1] - ends[0]).norm() <= 1e-6 * ends[0].norm());
       CHECK(runs[1].convergence_failures < runs[0].convergence_failures);
       CHECK(runs[1].factorizations < runs[0].factorizations);
@@ -223,7 +222,9 @@ StencilObjective make_taut_chain() {
   return make_chain(o);
 }
 
-TEST_CASE("a run settled at a saddle within endgame_gradient_factor of the tolerance ends with the end game") {
+TEST_CASE(
+    "a run settled at a saddle within endgame_gradient_factor of the tolerance ends with the end "
+    "game") {
   // The exactly straight column beyond Euler's load stays on its saddle
   // (see above). Its Hessian is indefinite there, so the end game by step
   // length never starts, and K is positive definite only for short steps:
@@ -262,7 +263,8 @@ TEST_CASE("a run settled at a saddle within endgame_gradient_factor of the toler
     CHECK(handover.gradient_measure > o.gradient_tolerance);
     CHECK(settled.steps < plain.steps);
     MESSAGE(label(o) << ": " << plain.steps << " steps without the settled end game, "
-                     << settled.steps << " with it (" << settled.endgame_steps << " of them Newton)");
+                     << settled.steps << " with it (" << settled.endgame_steps
+                     << " of them Newton)");
   }
 }
 
@@ -291,7 +293,8 @@ TEST_CASE("the overdamped velocity puts the second-order form on its slow manifo
   // From rest the whole force accelerates: v' = -M^-1 grad E.
   y.tail(n).setZero();
   const Eigen::VectorXd from_rest = system.consistent_derivatives(y, 0.0);
-  CHECK((from_rest.tail(n) + evaluator.gradient().cwiseQuotient(chain.mass())).norm() <= 1e-12 * scale);
+  CHECK((from_rest.tail(n) + evaluator.gradient().cwiseQuotient(chain.mass())).norm() <=
+        1e-12 * scale);
 }
 
 TEST_CASE("damped dynamics from the slow manifold: moving at the start, same equilibrium") {
@@ -311,7 +314,8 @@ TEST_CASE("damped dynamics from the slow manifold: moving at the start, same equ
     else
       CHECK(run.reports.front().kinetic_energy > 0.0);
     CHECK((chain.get() - reference.get()).norm() < 1e-6 * reference.get().norm());
-    const double drop = run.reports.front().energy + run.reports.front().kinetic_energy - run.result.energy;
+    const double drop =
+        run.reports.front().energy + run.reports.front().kinetic_energy - run.result.energy;
     CHECK(drop > 0.0);
     CHECK(run.max_total_energy_rise() <= 1e-6 * drop);
   }

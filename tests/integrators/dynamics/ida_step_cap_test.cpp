@@ -1,11 +1,10 @@
+#include "integrators/dynamics/ida_step_cap.hpp"
+
 #include <doctest/doctest.h>
 
 #include <limits>
 
-#include "integrators/dynamics/ida_step_cap.hpp"
-
 namespace xshell::test {
-
 
 namespace {
 

@@ -14,14 +14,14 @@
 #include <utility>
 #include <vector>
 
-#include "integrators/dynamics/ida_dynamics.hpp"
 #include "integrators/common/linkage_objective.hpp"
+#include "integrators/dynamics/ida_dynamics.hpp"
+#include "integrators/grid_fixtures.hpp"
 #include "integrators/newton/newton.hpp"
 #include "io/config.hpp"
 #include "io/obj_reader.hpp"
 #include "io/problem_setup.hpp"
 #include "linkage/linkage_fixtures.hpp"
-#include "integrators/grid_fixtures.hpp"
 
 namespace xshell::test {
 
@@ -43,7 +43,9 @@ std::vector<Case> cases() {
   {
     StaticsSetup s;
     s.gravity = Eigen::Vector3d(0, 0, -9.0);
-    s.supports = {{0, {SupportDof::Position}}, {3, {SupportDof::Position}}, {8, {SupportDof::Position}},
+    s.supports = {{0, {SupportDof::Position}},
+                  {3, {SupportDof::Position}},
+                  {8, {SupportDof::Position}},
                   {11, {SupportDof::Position}}};
     s.forces = {{5, Eigen::Vector3d(0.0, 0.0, -0.02)}};
     out.push_back({"curved grid (valence 2, 3, 4)", test::grid(3, 4, 0.4), RestShape::Input, s});
@@ -93,7 +95,8 @@ TEST_CASE("Damped dynamics reaches Newton's equilibrium on linkages, its energy 
   for (const Case& c : cases()) {
     for (DynamicsForm form : {DynamicsForm::SecondOrder, DynamicsForm::FirstOrder}) {
       CAPTURE(std::string(c.name));
-      const std::string form_name = form == DynamicsForm::SecondOrder ? "second order" : "first order";
+      const std::string form_name =
+          form == DynamicsForm::SecondOrder ? "second order" : "first order";
       CAPTURE(form_name);
       LinkageProblem by_newton(RodLinkage(c.graph, options(c.rest)), c.setup);
       LinkageProblem by_dynamics = by_newton;
@@ -102,8 +105,11 @@ TEST_CASE("Damped dynamics reaches Newton's equilibrium on linkages, its energy 
       REQUIRE(n.converged());
       std::vector<double> total;  // potential + kinetic energy per step
       DynamicsCallbacks callbacks;
-      callbacks.on_step = [&](const DynamicsReport& r) { total.push_back(r.energy + r.kinetic_energy); };
-      const DynamicsResult d = solve_dynamics(dynamics_objective, dynamics_options(form), callbacks);
+      callbacks.on_step = [&](const DynamicsReport& r) {
+        total.push_back(r.energy + r.kinetic_energy);
+      };
+      const DynamicsResult d =
+          solve_dynamics(dynamics_objective, dynamics_options(form), callbacks);
       CAPTURE(d.reason);
       REQUIRE(d.converged());
       CHECK(d.stable == n.stable);
@@ -120,7 +126,8 @@ TEST_CASE("Damped dynamics reaches Newton's equilibrium on linkages, its energy 
       const double drop = total.front() - total.back();
       CHECK(drop > 0.0);
       double worst_rise = 0.0;
-      for (size_t k = 1; k < total.size(); ++k) worst_rise = std::max(worst_rise, total[k] - total[k - 1]);
+      for (size_t k = 1; k < total.size(); ++k)
+        worst_rise = std::max(worst_rise, total[k] - total[k - 1]);
       CHECK(worst_rise <= 1e-3 * drop);
       ++compared;
     }
@@ -220,7 +227,11 @@ Timed time_newton(LinkageProblem problem, double tolerance) {
   NewtonOptions o = newton_options();
   o.gradient_tolerance = tolerance;
   const NewtonResult r = solve_newton(objective, o);
-  return {r.converged(), r.iterations, r.factorizations, r.seconds, problem.energy().total(),
+  return {r.converged(),
+          r.iterations,
+          r.factorizations,
+          r.seconds,
+          problem.energy().total(),
           problem.vertex_positions()};
 }
 
@@ -230,7 +241,11 @@ Timed time_dynamics(LinkageProblem problem, double tolerance, DynamicsForm form)
   o.gradient_tolerance = tolerance;
   const DynamicsResult r = solve_dynamics(objective, o);
   if (!r.converged()) MESSAGE("  not converged: " << r.reason);
-  return {r.converged(), r.steps, r.factorizations, r.seconds, problem.energy().total(),
+  return {r.converged(),
+          r.steps,
+          r.factorizations,
+          r.seconds,
+          problem.energy().total(),
           problem.vertex_positions()};
 }
 
@@ -294,17 +309,22 @@ using ProblemList = std::vector<ComparedProblem>;
 ProblemList timing_problems() {
   ProblemList problems;
   for (const Case& c : cases())
-    problems.push_back({c.name, [c] { return LinkageProblem(RodLinkage(c.graph, options(c.rest)), c.setup); }, 1e-8});
-  problems.push_back(
-      {"column 40 edges, 1.2 P_cr", [] { return column(1.2 * M_PI * M_PI / 4.0, 1.2e-4 * M_PI * M_PI / 4.0); }, 1e-8});
+    problems.push_back(
+        {c.name, [c] { return LinkageProblem(RodLinkage(c.graph, options(c.rest)), c.setup); },
+         1e-8});
+  problems.push_back({"column 40 edges, 1.2 P_cr",
+                      [] { return column(1.2 * M_PI * M_PI / 4.0, 1.2e-4 * M_PI * M_PI / 4.0); },
+                      1e-8});
   // The bundled samples with the material, supports and loads of grid_gravity.json.
   const std::filesystem::path samples = XSHELL_SAMPLES_DIR;
   const Config config = read_config((samples / "grid_gravity.json").string());
   for (const char* file : {"grid.obj", "saddle.obj"}) {
     const LineGraph graph = read_obj((samples / file).string());
-    problems.push_back({std::string("samples/") + file, [config, graph] {
+    problems.push_back({std::string("samples/") + file,
+                        [config, graph] {
                           const ProblemSetup setup = make_problem_setup(config, graph);
-                          return LinkageProblem(RodLinkage(setup.graph, setup.options), setup.statics);
+                          return LinkageProblem(RodLinkage(setup.graph, setup.options),
+                                                setup.statics);
                         },
                         1e-8});
   }
@@ -315,14 +335,17 @@ ProblemList timing_problems() {
   if (std::filesystem::is_directory(data)) {
     for (const char* file : {"uniform_linkage.obj", "sphere_open.obj"}) {
       const LineGraph graph = read_obj((data / file).string());
-      problems.push_back({file, [config, graph] {
+      problems.push_back({file,
+                          [config, graph] {
                             Config c = config;
                             c.rest_shape = RestShape::Input;
                             c.supports.clear();
-                            for (int v : corner_vertices(graph)) c.supports.push_back({v, {Fixed::Position}});
+                            for (int v : corner_vertices(graph))
+                              c.supports.push_back({v, {Fixed::Position}});
                             c.loads.forces.clear();
                             const ProblemSetup setup = make_problem_setup(c, graph);
-                            return LinkageProblem(RodLinkage(setup.graph, setup.options), setup.statics);
+                            return LinkageProblem(RodLinkage(setup.graph, setup.options),
+                                                  setup.statics);
                           },
                           1e-7});
     }
@@ -354,7 +377,8 @@ TEST_CASE("Started on the slow manifold, the second-order form skips the initial
     energy[slow] = d.energy;
     CHECK((reports.front().kinetic_energy > 0.0) == slow);
     // E + K starts at E_0 + K_0 and never rises.
-    const double drop = reports.front().energy + reports.front().kinetic_energy - reports.back().energy;
+    const double drop =
+        reports.front().energy + reports.front().kinetic_energy - reports.back().energy;
     CHECK(drop > 0.0);
     CHECK(worst_total_rise(reports) <= 1e-6 * drop);
   }
@@ -406,14 +430,16 @@ TEST_CASE("An end game handed over too early gives way to the dynamics again") {
   }
 }
 
-TEST_CASE("Damped dynamics in both forms reaches Newton's equilibrium on the samples and real graphs" *
-          doctest::test_suite("validation")) {
+TEST_CASE(
+    "Damped dynamics in both forms reaches Newton's equilibrium on the samples and real graphs" *
+    doctest::test_suite("validation")) {
   const ProblemList problems = timing_problems();
   if (!std::filesystem::is_directory(XSHELL_SHARED_DATA_DIR))
     MESSAGE("real graphs skipped: " << XSHELL_SHARED_DATA_DIR << " is absent");
   std::string table =
       "tolerance 1e-8 (real graphs 1e-7); steps, factorizations, seconds, ratio to Newton\n"
-      "linkage                              unknowns | Newton         | dynamics (2nd order)        "
+      "linkage                              unknowns | Newton         | dynamics (2nd order)       "
+      " "
       "| dynamics (1st order)\n";
   for (const auto& [name, make, tolerance] : problems) {
     CAPTURE(name);

@@ -1,9 +1,8 @@
-#include <doctest/doctest.h>
-
 #include "integrators/dynamics/mass_and_damping.hpp"
 
-namespace xshell::test {
+#include <doctest/doctest.h>
 
+namespace xshell::test {
 
 namespace {
 
@@ -68,7 +67,8 @@ TEST_CASE("inverse iteration finds the lowest eigenvalue of (H, M)") {
         doctest::Approx(2.0 * std::sqrt(-negative)).epsilon(1e-6));
 }
 
-TEST_CASE("mode estimate: unstable and lowest stable modes, each iteration stopped once converged") {
+TEST_CASE(
+    "mode estimate: unstable and lowest stable modes, each iteration stopped once converged") {
   auto diagonal = [](std::initializer_list<double> values) {
     Eigen::VectorXd d(static_cast<Eigen::Index>(values.size()));
     Eigen::Index i = 0;
@@ -80,7 +80,8 @@ TEST_CASE("mode estimate: unstable and lowest stable modes, each iteration stopp
 
   // Positive definite, the lowest mode far below the next: the Rayleigh
   // quotient settles in a few solves.
-  const Eigen::SparseMatrix<double> separated = diagonal({100.0, 1.0, 120.0, 140.0, 160.0, 180.0, 200.0, 220.0});
+  const Eigen::SparseMatrix<double> separated =
+      diagonal({100.0, 1.0, 120.0, 140.0, 160.0, 180.0, 200.0, 220.0});
   const ModeEstimate fast = estimate_modes(solver, separated, mass, 20);
   REQUIRE(fast.lowest.ok);
   CHECK_FALSE(fast.lowest.shifted);
@@ -88,7 +89,8 @@ TEST_CASE("mode estimate: unstable and lowest stable modes, each iteration stopp
   CHECK(fast.lowest.eigenvalue == doctest::Approx(2.0).epsilon(1e-10));
   CHECK(fast.lowest.iterations <= 5);
   // The next mode at 1.5 times the lowest: more iterations, same accuracy.
-  const Eigen::SparseMatrix<double> close = diagonal({3.0, 2.0, 120.0, 140.0, 160.0, 180.0, 200.0, 220.0});
+  const Eigen::SparseMatrix<double> close =
+      diagonal({3.0, 2.0, 120.0, 140.0, 160.0, 180.0, 200.0, 220.0});
   const ModeEstimate slow = estimate_modes(solver, close, mass, 40);
   REQUIRE(slow.lowest.ok);
   CHECK(slow.lowest.iterations > fast.lowest.iterations + 3);
@@ -101,7 +103,8 @@ TEST_CASE("mode estimate: unstable and lowest stable modes, each iteration stopp
   // Two unstable modes, then the lowest stable one. The shift s > 6 puts the
   // iteration's eigenvalues 1 / (lambda + s) close together: a relative
   // change of 1e-6 at the stop leaves errors near 1e-5 in lambda.
-  const Eigen::SparseMatrix<double> saddle = diagonal({50.0, -1.0, 60.0, 1.0, -3.0, 70.0, 80.0, 90.0});
+  const Eigen::SparseMatrix<double> saddle =
+      diagonal({50.0, -1.0, 60.0, 1.0, -3.0, 70.0, 80.0, 90.0});
   const ModeEstimate modes = estimate_modes(solver, saddle, mass, 40);
   REQUIRE(modes.lowest.ok);
   CHECK(modes.lowest.shifted);
@@ -115,7 +118,8 @@ TEST_CASE("mode estimate: unstable and lowest stable modes, each iteration stopp
   // modes of a linkage without supports: the ones after the lowest are
   // known to be unstable after a few solves each, and their exact values
   // are not needed; the lowest and the lowest stable one still are.
-  const Eigen::SparseMatrix<double> cluster = diagonal({50.0, -2.0, 60.0, 1.0, -3.0, -1.8, -1.6, 90.0});
+  const Eigen::SparseMatrix<double> cluster =
+      diagonal({50.0, -2.0, 60.0, 1.0, -3.0, -1.8, -1.6, 90.0});
   CholeskySolver counted;
   const ModeEstimate clustered = estimate_modes(counted, cluster, mass, 40);
   REQUIRE(clustered.lowest.ok);
@@ -123,7 +127,8 @@ TEST_CASE("mode estimate: unstable and lowest stable modes, each iteration stopp
   CHECK(clustered.lowest.eigenvalue == doctest::Approx(-6.0).epsilon(1e-4));
   REQUIRE(clustered.stable.ok);
   CHECK(clustered.stable.eigenvalue == doctest::Approx(2.0).epsilon(1e-4));
-  const long others = counted.stats().solves - clustered.lowest.iterations - clustered.stable.iterations;
+  const long others =
+      counted.stats().solves - clustered.lowest.iterations - clustered.stable.iterations;
   CHECK(others <= 3 * 7);  // each to convergence: 97
 }
 

@@ -16,17 +16,17 @@
 #include <string>
 #include <vector>
 
-#include "integrators/dynamics/ida_dynamics.hpp"
-#include "integrators/kinetic_damping/kinetic_damping.hpp"
+#include "integrators/beam_fixtures.hpp"
 #include "integrators/common/linkage_objective.hpp"
+#include "integrators/dynamics/ida_dynamics.hpp"
 #include "integrators/dynamics/mass_and_damping.hpp"
+#include "integrators/grid_fixtures.hpp"
+#include "integrators/kinetic_damping/kinetic_damping.hpp"
+#include "integrators/kinetic_damping/kinetic_damping_support.hpp"
 #include "integrators/newton/newton.hpp"
+#include "integrators/toy_objectives.hpp"
 #include "io/obj_reader.hpp"
 #include "linkage/statics_problem.hpp"
-#include "integrators/beam_fixtures.hpp"
-#include "integrators/grid_fixtures.hpp"
-#include "integrators/kinetic_damping/kinetic_damping_support.hpp"
-#include "integrators/toy_objectives.hpp"
 #include "skip.hpp"
 
 namespace xshell::test {
@@ -335,20 +335,18 @@ TEST_CASE("kinetic damping against Newton and damped dynamics: sphere_open from 
           doctest::test_suite("validation")) {
   const LineGraph graph = shared_graph("sphere_open.obj");
   if (graph.vertices.empty()) XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
-  benchmark(
-      "sphere_open.obj: rest shape straight, default pin, 4 edges/segment",
-      [&graph] { return LinkageProblem(RodLinkage(graph, lath_options(4)), StaticsSetup{}); },
-      1e-8, 1000, 400.0, {MassBound::RowSum});
+  benchmark("sphere_open.obj: rest shape straight, default pin, 4 edges/segment",
+            [&graph] { return LinkageProblem(RodLinkage(graph, lath_options(4)), StaticsSetup{}); },
+            1e-8, 1000, 400.0, {MassBound::RowSum});
 }
 
 TEST_CASE("kinetic damping against Newton: sphere_open from straight with scaled row sums" *
           doctest::test_suite("validation")) {
   const LineGraph graph = shared_graph("sphere_open.obj");
   if (graph.vertices.empty()) XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
-  benchmark(
-      "sphere_open.obj: rest shape straight, default pin, 4 edges/segment",
-      [&graph] { return LinkageProblem(RodLinkage(graph, lath_options(4)), StaticsSetup{}); },
-      1e-8, 0, 500.0, {MassBound::ScaledRowSum});
+  benchmark("sphere_open.obj: rest shape straight, default pin, 4 edges/segment",
+            [&graph] { return LinkageProblem(RodLinkage(graph, lath_options(4)), StaticsSetup{}); },
+            1e-8, 0, 500.0, {MassBound::ScaledRowSum});
 }
 
 }  // namespace xshell::test

@@ -42,7 +42,8 @@ inline Run run_kinetic_damping(Objective& objective, const KineticDampingOptions
   return run;
 }
 
-inline KineticDampingOptions tight(double tolerance = 1e-8, PeakLocation peak = PeakLocation::Barnes,
+inline KineticDampingOptions tight(double tolerance = 1e-8,
+                                   PeakLocation peak = PeakLocation::Barnes,
                                    MassBound bound = MassBound::RowSum) {
   KineticDampingOptions options;
   options.gradient_tolerance = tolerance;

@@ -1,6 +1,8 @@
 // Kinetic damping (explicit dynamic relaxation) on toy objectives: where
 // the first peak reset lands, the mass bounds, Newton's equilibria, rebases,
 // the column's saddle, and the stop flag, limits and failures.
+#include "integrators/kinetic_damping/kinetic_damping.hpp"
+
 #include <doctest/doctest.h>
 
 #include <Eigen/Eigenvalues>
@@ -16,19 +18,17 @@
 #include <string>
 #include <vector>
 
-#include "integrators/dynamics/ida_dynamics.hpp"
-#include "integrators/kinetic_damping/kinetic_damping.hpp"
+#include "integrators/beam_fixtures.hpp"
 #include "integrators/common/linkage_objective.hpp"
+#include "integrators/dynamics/ida_dynamics.hpp"
 #include "integrators/dynamics/mass_and_damping.hpp"
+#include "integrators/kinetic_damping/kinetic_damping_support.hpp"
 #include "integrators/newton/newton.hpp"
+#include "integrators/toy_objectives.hpp"
 #include "io/obj_reader.hpp"
 #include "linkage/statics_problem.hpp"
-#include "integrators/beam_fixtures.hpp"
-#include "integrators/kinetic_damping/kinetic_damping_support.hpp"
-#include "integrators/toy_objectives.hpp"
 
 namespace xshell::test {
-
 
 namespace {
 

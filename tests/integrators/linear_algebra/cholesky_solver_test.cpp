@@ -1,8 +1,9 @@
+#include "integrators/linear_algebra/cholesky_solver.hpp"
+
 #include <doctest/doctest.h>
 
 #include <random>
 
-#include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/linear_algebra/shifted_factorization.hpp"
 
 namespace xshell::test {

@@ -1,10 +1,11 @@
+#include "integrators/linear_algebra/cholmod_threads.hpp"
+
 #include <doctest/doctest.h>
 #include <omp.h>
 
 #include <random>
 
 #include "integrators/linear_algebra/cholesky_solver.hpp"
-#include "integrators/linear_algebra/cholmod_threads.hpp"
 
 namespace xshell::test {
 

@@ -11,8 +11,8 @@
 #include <optional>
 #include <string>
 
-#include "integrators/grid_fixtures.hpp"
 #include "integrators/common/linkage_objective.hpp"
+#include "integrators/grid_fixtures.hpp"
 #include "integrators/newton/newton.hpp"
 #include "linkage/linkage_fixtures.hpp"
 #include "linkage/statics_problem.hpp"

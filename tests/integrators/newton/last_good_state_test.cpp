@@ -10,7 +10,6 @@
 
 namespace xshell::test {
 
-
 namespace {
 
 // E = |x - 3|^2 / 2 with its exact gradient everywhere, but the energy is
@@ -41,7 +40,8 @@ class NanEnergyBeyondTwo : public Objective {
 
 }  // namespace
 
-TEST_CASE("Newton: a step to a finite gradient but a NaN energy is refused, the state before it kept") {
+TEST_CASE(
+    "Newton: a step to a finite gradient but a NaN energy is refused, the state before it kept") {
   NanEnergyBeyondTwo objective(3);
   NewtonOptions options;
   options.gradient_tolerance = 1e-10;

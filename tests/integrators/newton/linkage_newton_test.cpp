@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "integrators/beam_fixtures.hpp"
+#include "integrators/common/linkage_objective.hpp"
 #include "integrators/elastica.hpp"
 #include "integrators/grid_fixtures.hpp"
-#include "integrators/common/linkage_objective.hpp"
 #include "integrators/newton/newton.hpp"
 #include "linkage/statics_problem.hpp"
 
@@ -31,7 +31,8 @@ NewtonOptions tight(double tolerance = 1e-9) {
 
 }  // namespace
 
-TEST_CASE("Cantilever under a tip load matches the large-deflection elastica, converging with n_s") {
+TEST_CASE(
+    "Cantilever under a tip load matches the large-deflection elastica, converging with n_s") {
   int levels = 0;
   for (double alpha : {0.5, 1.0, 2.0, 4.0}) {
     CAPTURE(alpha);
@@ -49,7 +50,8 @@ TEST_CASE("Cantilever under a tip load matches the large-deflection elastica, co
       CHECK(result.stable);
       deflection.push_back(-problem.vertex_positions()[1].z());
     }
-    const double e10 = std::abs(deflection[0] - exact.deflection), e20 = std::abs(deflection[1] - exact.deflection),
+    const double e10 = std::abs(deflection[0] - exact.deflection),
+                 e20 = std::abs(deflection[1] - exact.deflection),
                  e40 = std::abs(deflection[2] - exact.deflection);
     CHECK(e20 < e10);
     CHECK(e40 < e20);
@@ -64,7 +66,8 @@ TEST_CASE("Cantilever under a tip load matches the large-deflection elastica, co
   CHECK(test::cantilever_elastica(1.0).deflection == doctest::Approx(0.30172).epsilon(1e-4));
 }
 
-TEST_CASE("Euler buckling of a clamped-free column: straight is stable below P_cr, unstable above") {
+TEST_CASE(
+    "Euler buckling of a clamped-free column: straight is stable below P_cr, unstable above") {
   const double p_cr = M_PI * M_PI / 4.0;  // E I = 1, L = 1
   int cases = 0;
   for (double factor : {0.85, 1.15}) {
@@ -84,7 +87,8 @@ TEST_CASE("Linkage under gravity: converged below tolerance, symmetric, quadrati
   const int n = 4;
   StaticsSetup setup;
   setup.gravity = Eigen::Vector3d(0, 0, -9.81);
-  for (int corner : {0, n - 1, n * (n - 1), n * n - 1}) setup.supports.push_back({corner, {SupportDof::Position}});
+  for (int corner : {0, n - 1, n * (n - 1), n * n - 1})
+    setup.supports.push_back({corner, {SupportDof::Position}});
   LinkageProblem problem(RodLinkage(square_grid(n), lath_options()), setup);
   LinkageObjective objective(problem);
   std::vector<double> measures;
@@ -103,7 +107,8 @@ TEST_CASE("Linkage under gravity: converged below tolerance, symmetric, quadrati
   int pairs = 0;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
-      const Eigen::Vector3d a = x[i * n + j], b = x[i * n + (n - 1 - j)], c = x[(n - 1 - i) * n + j];
+      const Eigen::Vector3d a = x[i * n + j], b = x[i * n + (n - 1 - j)],
+                            c = x[(n - 1 - i) * n + j];
       const double centre = 0.25 * (n - 1) / 2.0;  // of the input grid, in x and y
       CHECK(std::abs(a.x() + b.x() - 2.0 * centre) < 1e-8 * diagonal);
       CHECK(std::abs(a.z() - b.z()) < 1e-8 * diagonal);

@@ -1,3 +1,5 @@
+#include "integrators/newton/newton.hpp"
+
 #include <doctest/doctest.h>
 
 #include <atomic>
@@ -5,11 +7,9 @@
 #include <vector>
 
 #include "integrators/convergence.hpp"
-#include "integrators/newton/newton.hpp"
 #include "integrators/toy_objectives.hpp"
 
 namespace xshell::test {
-
 
 namespace {
 
@@ -115,8 +115,9 @@ TEST_CASE("Newton on the offset (rebasing) objective") {
     INFO(label(options) << ": " << run.result.reason);
     REQUIRE(run.result.status == NewtonStatus::Converged);
     CHECK(run.result.stable);
-    CHECK(offset.rebases() == run.result.iterations + 1);  // one before the first iteration, one after each
-    CHECK(offset.get().norm() < 1e-6);                 // offsets are reset every iteration
+    CHECK(offset.rebases() ==
+          run.result.iterations + 1);   // one before the first iteration, one after each
+    CHECK(offset.get().norm() < 1e-6);  // offsets are reset every iteration
     expect_quadratic_convergence(run, "offset chain, " + label(options));
     CHECK((offset.configuration() - plain.get()).norm() < 1e-8 * plain.get().norm());
   }

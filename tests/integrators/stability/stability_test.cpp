@@ -8,7 +8,6 @@
 
 namespace xshell::test {
 
-
 namespace {
 
 // Lateral deflection of the column's nodes in a mode, normalized to 1 at
@@ -65,7 +64,9 @@ TEST_CASE("Lowest eigenpairs by shift-invert Lanczos match a dense solve, also w
   CHECK(checked == 8);
 }
 
-TEST_CASE("Euler column: the linearized buckling load factor predicts P_cr, the mode is the Euler shape") {
+TEST_CASE(
+    "Euler column: the linearized buckling load factor predicts P_cr, the mode is the Euler "
+    "shape") {
   // Clamped-free column, E I = 1, L = 1: P_cr = pi^2 / 4, mode 1 - cos(pi s / 2).
   const double p_cr = M_PI * M_PI / 4.0;
   int compared = 0;

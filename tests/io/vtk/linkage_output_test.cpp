@@ -13,8 +13,8 @@
 
 namespace xshell::test {
 
-
-TEST_CASE("VTK output of a deformed linkage: counts, orthonormal frames, d2 = joint normal at joints") {
+TEST_CASE(
+    "VTK output of a deformed linkage: counts, orthonormal frames, d2 = joint normal at joints") {
   std::mt19937 rng(4);
   RodLinkage linkage(test::grid(3, 4, 0.4), test::test_options(RestShape::Input, 5));
   linkage.set_dofs(linkage.dofs() + test::random_vector(linkage.num_dofs(), rng, 0.02));
@@ -25,7 +25,8 @@ TEST_CASE("VTK output of a deformed linkage: counts, orthonormal frames, d2 = jo
   int checks = 0;
   {
     VtkSeries series(dir.path(), options);
-    for (int step = 0; step < 5; ++step) series.write(linkage_snapshot(linkage, origin, step), step == 0 || step == 4);
+    for (int step = 0; step < 5; ++step)
+      series.write(linkage_snapshot(linkage, origin, step), step == 0 || step == 4);
     series.close();
   }
   // Steps 0 (forced), 2 and 4 (forced; also the second of its pair).

@@ -7,7 +7,6 @@
 
 namespace xshell::test {
 
-
 TEST_CASE("linkage snapshot: each rod carries the section of its own segments") {
   const LineGraph graph = single_x();  // two rods crossing at vertex 0
   LinkageOptions o = test_options();

@@ -2,6 +2,8 @@
 // suite under `xvfb-run -a`; without a display that case only prints a
 // MESSAGE. The error paths (no display, unreachable display, bad input) are
 // checked everywhere.
+#include "io/vtk/render_png.hpp"
+
 #include <doctest/doctest.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -15,12 +17,11 @@
 
 #include "demo_snapshot.hpp"
 #include "io/vtk/render_error.hpp"
-#include "io/vtk/render_png.hpp"
 #include "io/vtk/rods_file.hpp"
 #include "io/vtk/solids_file.hpp"
 #include "io/vtk/x_display.hpp"
-#include "vtk_test_support.hpp"
 #include "skip.hpp"
+#include "vtk_test_support.hpp"
 
 namespace xshell::test {
 namespace {

@@ -1,11 +1,12 @@
 // Section outlines and node frames of the swept solids.
+#include "io/vtk/section_sweep.hpp"
+
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
 
 #include "demo_snapshot.hpp"
-#include "io/vtk/section_sweep.hpp"
 #include "vtk_test_support.hpp"
 
 namespace xshell::test {

@@ -1,5 +1,7 @@
 // The solids file: rods swept by their cross-sections into closed, outward
 // oriented surfaces.
+#include "io/vtk/solids_file.hpp"
+
 #include <doctest/doctest.h>
 #include <vtkCellData.h>
 #include <vtkIdList.h>
@@ -11,7 +13,6 @@
 #include <map>
 
 #include "demo_snapshot.hpp"
-#include "io/vtk/solids_file.hpp"
 #include "vtk_test_support.hpp"
 
 namespace xshell::test {

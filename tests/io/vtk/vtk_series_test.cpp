@@ -1,5 +1,7 @@
 // The .pvd series: cadence, step file names, an index that always matches
 // the files on disk.
+#include "io/vtk/vtk_series.hpp"
+
 #include <doctest/doctest.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
@@ -9,7 +11,6 @@
 
 #include "demo_snapshot.hpp"
 #include "io/atomic_file.hpp"
-#include "io/vtk/vtk_series.hpp"
 #include "vtk_test_support.hpp"
 
 namespace xshell::test {
