@@ -3,7 +3,7 @@
 # Run as root on Debian bookworm (or with sudo available).
 set -euo pipefail
 packages=(
-  build-essential cmake pkg-config
+  build-essential cmake pkg-config clang-format
   libeigen3-dev libsundials-dev libsuitesparse-dev libvtk9-dev
   doctest-dev nlohmann-json3-dev libcli11-dev libspectra-dev
   libopenblas0-openmp

@@ -26,17 +26,9 @@ export ASAN_OPTIONS="$asan"
 export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS=halt_on_error=1:abort_on_error=1:print_stacktrace=1
 # OpenMP threads wait passively: several test programs run at once.
-# Xvfb runs with -noreset: by default it resets when its last client leaves,
-# and a test connecting at that moment fails with "cannot open X display".
 export OMP_WAIT_POLICY=PASSIVE
 cd build-sanitize
-run_ctest() {
-  if command -v xvfb-run >/dev/null 2>&1; then
-    xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" ctest --output-on-failure -j"$(nproc)" "$@"
-  else
-    ctest --output-on-failure -j"$(nproc)" "$@"
-  fi
-}
+run_ctest() { bash ../scripts/run-ctest.sh "$@"; }
 run_ctest -E "needs a display" "$@"
 driver=$(ls /usr/lib/*/dri/swrast_dri.so 2>/dev/null | head -n 1 || true)
 if [ -n "$driver" ]; then

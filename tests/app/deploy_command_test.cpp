@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "command_runner.hpp"
+#include "skip.hpp"
 
 namespace xshell::test {
 
@@ -135,6 +136,26 @@ TEST_CASE(
     ++solvers;
   }
   CHECK(solvers == 2);
+}
+
+TEST_CASE("the deployment plot runs without a shell: quotes and $(...) in the output folder") {
+  if (!matplotlib_available()) XSHELL_SKIP("no python3 with matplotlib: no deployment plot");
+  const fs::path dir = temporary_directory("deploy-plot-name");
+  write_text(dir / "dome.obj", dome_obj());
+  write_text(dir / "run.json",
+             deploy_config(R"({"average_opening_angle": 1.7, "steps": 1})", "newton"));
+  // The folder's name is quoted for the shell that runs this test, and
+  // reaches xshell (and the plot) as it is.
+  const std::string name = "it's a $(touch pwned) `touch pwned2` dir";
+  const CommandResult r =
+      run_xshell("relax run.json --out \"it's a \\$(touch pwned) \\`touch pwned2\\` dir\"", dir);
+  CAPTURE(r.errors);
+  REQUIRE(r.status == 0);
+  CHECK(fs::exists(dir / name / "deployment.png"));
+  CHECK(read_json(dir / name / "summary.json")["deployment"]["plot"] == "deployment.png");
+  CHECK_FALSE(fs::exists(dir / "pwned"));
+  CHECK_FALSE(fs::exists(dir / name / "pwned"));
+  CHECK_FALSE(fs::exists(dir / "pwned2"));
 }
 
 TEST_CASE("relax --init continues a deployment, and closing it back returns the start energy") {

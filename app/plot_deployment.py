@@ -1,0 +1,47 @@
+"""deployment.png: energy and torque of a deployment against the average
+opening angle, drawn from deployment.csv with matplotlib.
+
+Run by xshell (app/deployment_plot.cpp) as
+    python3 plot_deployment.py TABLE PICTURE TEMPORARY
+The picture is drawn to TEMPORARY (in PICTURE's folder) and renamed onto
+PICTURE, so that PICTURE is either absent or complete.
+"""
+import csv
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+
+
+def main(table, picture, temporary):
+    with open(table, newline="") as f:
+        rows = list(csv.DictReader(f))
+    angle = [math.degrees(float(r["average_angle"])) for r in rows]
+    fig, left = plt.subplots(figsize=(8, 5), dpi=120)
+    for key, style, label in (("energy_total", "o-", "total"), ("energy_bending", "--", "bending"),
+                              ("energy_twisting", ":", "twisting"),
+                              ("energy_stretching", "-.", "stretching")):
+        left.plot(angle, [float(r[key]) for r in rows], style, color="tab:blue", label=label,
+                  markersize=3, linewidth=1.5 if key == "energy_total" else 1.0)
+    left.set_xlabel("average opening angle (degrees)")
+    left.set_ylabel("energy", color="tab:blue")
+    left.legend(loc="upper left", title="energy")
+    right = left.twinx()
+    right.plot(angle, [float(r["torque"]) for r in rows], "s-", color="tab:red", markersize=3)
+    unstable = [(a, float(r["torque"])) for a, r in zip(angle, rows) if r["stable"] != "true"]
+    if unstable:
+        right.plot(*zip(*unstable), "x", color="black", label="not stable")
+        right.legend(loc="lower right")
+    right.set_ylabel("torque dE/dA (energy per radian)", color="tab:red")
+    left.set_title("deployment")
+    fig.tight_layout()
+    fig.savefig(temporary, format="png")
+    os.replace(temporary, picture)
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:4])
