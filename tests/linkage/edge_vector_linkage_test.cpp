@@ -1,5 +1,5 @@
-// The linkage energy's gradient and Hessian with edge-vector joints (seed
-// sections 3-4) against finite differences, unconstrained (all 9 joint
+// The linkage energy's gradient and Hessian with edge-vector joints (docs/model.md
+// sections 5.4 and 7) against finite differences, unconstrained (all 9 joint
 // parameters free) and constrained (supports "orientation": directions
 // fixed, lengths free), on graphs with valences 1-4; supports, weights and
 // the rebase for the new kind.

@@ -1,4 +1,4 @@
-// The seed's closed-form derivatives of a terminal edge's theta with respect
+// The closed-form derivatives (docs/model.md section 7.4) of a terminal edge's theta with respect
 // to the edge vectors (edge_vector_theta.hpp) against the exact AD
 // derivatives of an edge-vector joint (Joint::terminal_edge_derivatives) and
 // against finite differences, at random configurations.
@@ -84,8 +84,8 @@ double theta_of(const Case& c, const Eigen::VectorXd& e) {
   return joint.terminal_edge(c.stencil.label, c.stencil.sign, c.stencil.source, hint).theta;
 }
 
-// Relative error of seed 4.1 read literally: the material d1 = n x t and
-// d2 = n in the first two terms of the transport term g.
+// Relative error of the seed note's section 4.1 read literally (docs/model.md section 10.1): the
+// material d1 = n x t and d2 = n in the first two terms of the transport term g.
 double literal_error(const EdgeVectorThetaStencil& s, const Eigen::Matrix<double, 6, 1>& exact) {
   const Eigen::Vector3d& e = s.label == 0 ? s.e_a : s.e_b;
   const Eigen::Vector3d t = s.sign * e.normalized(), n = s.e_a.cross(s.e_b).normalized();
@@ -112,7 +112,7 @@ Eigen::VectorXd stacked(const EdgeVectorThetaStencil& s) {
 
 }  // namespace
 
-TEST_CASE("Seed 4.1: the closed-form theta gradient matches AD and finite differences anywhere") {
+TEST_CASE("Closed-form theta gradient (model 7.4): matches AD and finite differences anywhere") {
   std::mt19937 rng(11);
   int compared = 0, cases = 0;
   double worst_literal = 0.0;
@@ -121,12 +121,13 @@ TEST_CASE("Seed 4.1: the closed-form theta gradient matches AD and finite differ
       const Case c = random_case(rng, trial % 2, (trial / 2) % 2 ? -1 : 1, offset);
       CAPTURE(trial);
       CAPTURE(offset);
-      const Eigen::Matrix<double, 6, 1> seed = edge_vector_theta_gradient(c.stencil);
+      const Eigen::Matrix<double, 6, 1> closed_form = edge_vector_theta_gradient(c.stencil);
       const AdTheta ad = ad_theta(c);
       REQUIRE(ad.gradient.norm() > 0.0);
-      CHECK((seed - ad.gradient).norm() <= 1e-12 * ad.gradient.norm());
-      const DifferenceReport fd = check_gradient(
-          [&](const Eigen::VectorXd& e) { return theta_of(c, e); }, stacked(c.stencil), seed, 1e-6);
+      CHECK((closed_form - ad.gradient).norm() <= 1e-12 * ad.gradient.norm());
+      const DifferenceReport fd =
+          check_gradient([&](const Eigen::VectorXd& e) { return theta_of(c, e); },
+                         stacked(c.stencil), closed_form, 1e-6);
       CHECK(fd.relative_error() < 1e-7);
       // Right after an update the transport term vanishes.
       if (offset == 0.0)
@@ -143,22 +144,22 @@ TEST_CASE("Seed 4.1: the closed-form theta gradient matches AD and finite differ
 }
 
 TEST_CASE(
-    "Seed 4.2: the closed-form theta Hessian matches AD and finite differences after an update") {
+    "Closed-form theta Hessian (model 7.4): matches AD and finite differences after an update") {
   std::mt19937 rng(12);
   int compared = 0;
   double worst_transposed = 0.0, scale = 0.0;
   for (int trial = 0; trial < 24; ++trial) {
     const Case c = random_case(rng, trial % 2, (trial / 2) % 2 ? -1 : 1, 0.0);
     CAPTURE(trial);
-    const EdgeVectorThetaHessian seed = edge_vector_theta_hessian(c.stencil);
-    const Eigen::Matrix<double, 6, 6> h = seed.full();
+    const EdgeVectorThetaHessian closed_form = edge_vector_theta_hessian(c.stencil);
+    const Eigen::Matrix<double, 6, 6> h = closed_form.full();
     const AdTheta ad = ad_theta(c);
     const double tol = 1e-12 * ad.hessian.norm();
-    CHECK((seed.aa - ad.hessian.block<3, 3>(0, 0)).norm() <= tol);
-    CHECK((seed.bb - ad.hessian.block<3, 3>(3, 3)).norm() <= tol);
-    CHECK((seed.ab - ad.hessian.block<3, 3>(0, 3)).norm() <= tol);  // rows e_A, columns e_B
-    CHECK((seed.aa - seed.aa.transpose()).norm() <= tol);
-    CHECK((seed.bb - seed.bb.transpose()).norm() <= tol);
+    CHECK((closed_form.aa - ad.hessian.block<3, 3>(0, 0)).norm() <= tol);
+    CHECK((closed_form.bb - ad.hessian.block<3, 3>(3, 3)).norm() <= tol);
+    CHECK((closed_form.ab - ad.hessian.block<3, 3>(0, 3)).norm() <= tol);  // rows e_A, columns e_B
+    CHECK((closed_form.aa - closed_form.aa.transpose()).norm() <= tol);
+    CHECK((closed_form.bb - closed_form.bb.transpose()).norm() <= tol);
     // Finite differences of the (everywhere valid) closed-form gradient.
     const DifferenceReport fd = check_hessian(
         [&](const Eigen::VectorXd& e) {
@@ -169,8 +170,8 @@ TEST_CASE(
         },
         stacked(c.stencil), h, 1e-6);
     CHECK(fd.relative_error() < 1e-7);
-    worst_transposed =
-        std::max(worst_transposed, (seed.ab.transpose() - ad.hessian.block<3, 3>(0, 3)).norm());
+    worst_transposed = std::max(worst_transposed,
+                                (closed_form.ab.transpose() - ad.hessian.block<3, 3>(0, 3)).norm());
     scale = std::max(scale, ad.hessian.norm());
     compared += fd.compared + 3 * 9;
   }
@@ -179,14 +180,16 @@ TEST_CASE(
   CHECK(worst_transposed > 1e-2 * scale);
 }
 
-TEST_CASE("Seed 4.2 holds only at the update: away from it the exact Hessian differs") {
+TEST_CASE(
+    "Closed-form theta Hessian (model 7.4) holds only at the update: away from it the exact "
+    "Hessian differs") {
   std::mt19937 rng(13);
   int cases = 0;
   for (int trial = 0; trial < 8; ++trial) {
     const Case c = random_case(rng, trial % 2, 1, 0.5);
     const AdTheta ad = ad_theta(c);
-    const Eigen::Matrix<double, 6, 6> seed = edge_vector_theta_hessian(c.stencil).full();
-    CHECK((seed - ad.hessian).norm() > 1e-6 * ad.hessian.norm());
+    const Eigen::Matrix<double, 6, 6> closed_form = edge_vector_theta_hessian(c.stencil).full();
+    CHECK((closed_form - ad.hessian).norm() > 1e-6 * ad.hessian.norm());
     ++cases;
   }
   CHECK(cases == 8);

@@ -1,5 +1,5 @@
-// Edge-vector joints (seed sections 3-4) as a cross-check of the rotation
-// joints (section 5): the same linkage, loads and supports, solved by Newton
+// Edge-vector joints (docs/model.md section 5.4) as a cross-check of the rotation
+// joints (docs/model.md section 5.2): the same linkage, loads and supports, solved by Newton
 // (energy line search) to a gradient measure of 1e-8 in each
 // parametrization, reaches the same equilibrium. Supports are the same
 // constraint in both: "position" pins, and a constrained joint is
