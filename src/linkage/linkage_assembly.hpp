@@ -99,10 +99,57 @@ class LinkageAssembly {
     Eigen::Matrix<double, Eigen::Dynamic, 7> coupling_rows;  // rows of coupled free unknowns
     TerminalEdgeDerivatives terminal[2];
   };
-  // Local gradient (and Hessian) of segment s into scratch.
+  using BoolMatrix = Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>;
+
+  // Construction steps (linkage_assembly_plan.cpp).
+  // Segment s's local unknowns: free_full, controlled, joint_local, global.
+  static void plan_unknowns(const RodLinkage& linkage, int s, SegmentPlan& plan);
+  // Structure of the local Hessian from the rod's (rod_pattern, full
+  // variables): free-free as is; a free row touching any controlled
+  // variable of a joint couples to all 9 of its parameters (coupled_free);
+  // joint blocks are full (their own second derivatives) and couple to each
+  // other when the rod couples their terminal values (ends_coupled).
+  static BoolMatrix local_pattern(const BoolMatrix& rod_pattern, SegmentPlan& plan);
+  // pattern_ from the (free row, free column) of every Hessian contribution.
+  void build_pattern(const std::vector<std::array<int, 2>>& contribution_entry);
+  // The value slot in pattern_ of every contribution.
+  std::vector<long> contribution_slots(
+      const std::vector<std::array<int, 2>>& contribution_entry) const;
+  // Appends local entry -> target to runs, extending the last run when both
+  // follow on from it.
+  static void append_run(std::vector<CopyRun>& runs, int entry, long target);
+  // Hessian gather lists, in contribution order (segment order) for every
+  // entry, and every segment's runs: slot per contribution (in plan order),
+  // kept_entries per segment its local entries (column-major index). Reads
+  // each plan's hessian_begin as its first contribution and sets it to its
+  // range of the contribution buffer.
+  void plan_hessian_sums(const std::vector<long>& slot,
+                         const std::vector<std::vector<int>>& kept_entries);
+  // The gradient likewise: an unknown of one segment alone (its interior
+  // nodes and thetas) is written by that segment; a joint's, summed.
+  void plan_gradient_sums();
+
+  // Evaluation steps (linkage_assembly.cpp), all into the scratch.
+  // Local gradient (and Hessian) of segment s.
   void local_derivatives(const RodLinkage& linkage, int s,
                          const std::vector<Eigen::VectorXd>* forces, bool with_hessian,
                          Scratch& scratch) const;
+  // The joint Jacobians (with_hessian: and second derivatives) of segment
+  // s's terminal edges.
+  void terminal_jacobians(const RodLinkage& linkage, int s, bool with_hessian,
+                          Scratch& scratch) const;
+  // Local gradient from the rod's (nv full variables): free variables map to
+  // themselves, joint blocks get J^T g.
+  static void local_gradient(const SegmentPlan& plan, int nv, Scratch& scratch);
+  // Local Hessian: J^T H J by blocks, plus the joints' second derivatives.
+  // Only entries in the plan's pattern are read afterwards: all free-free
+  // ones, the rows of free unknowns coupled to an end, and the joint blocks
+  // (the only ones accumulated, so the only ones zeroed).
+  static void local_hessian(const SegmentPlan& plan, int nv, Scratch& scratch);
+  // The blocks of the joint at `side`: its coupling to free unknowns, its
+  // J^T H J with itself (and the other end's joint), its second
+  // derivatives; its diagonal block made symmetric.
+  static void add_joint_hessian(const SegmentPlan& plan, int side, int nv, Scratch& scratch);
   // target[run.target + i] = local[run.first + i] over the runs.
   static void copy_runs(const std::vector<CopyRun>& runs, const double* local, double* target);
   // Inside the caller's parallel region: joint_work(j) for every joint, a

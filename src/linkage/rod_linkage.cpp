@@ -1,6 +1,7 @@
 #include "rod_linkage.hpp"
 
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -30,29 +31,35 @@ RodEnergy sum_in_order(const std::vector<RodEnergy>& parts) {
 double theta_for_normal(const Frame<double>& ref, const Eigen::Vector3d& n) {
   return std::atan2(-n.dot(ref.d1.values()), n.dot(ref.d2.values()));
 }
-}  // namespace
 
-RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
-    : graph_(graph), options_(options), topology_(build_topology(graph)) {
+// Rejects fewer than kMinSubdivisions edges per segment, and a list of
+// segment materials that is not one per segment.
+void check_options(const LinkageOptions& options, int num_segments) {
   const int n = options.subdivisions;
   if (n < kMinSubdivisions)
     throw ModelError("subdivisions must be at least " + std::to_string(kMinSubdivisions) +
                      ", got " + std::to_string(n));
-  const int ns = static_cast<int>(topology_.segments.size());
   if (!options.segment_materials.empty() &&
-      static_cast<int>(options.segment_materials.size()) != ns)
+      static_cast<int>(options.segment_materials.size()) != num_segments)
     throw ModelError("segment materials: " + std::to_string(options.segment_materials.size()) +
-                     " given for " + std::to_string(ns) + " segments");
+                     " given for " + std::to_string(num_segments) + " segments");
+}
 
-  // Uniform edge length that fills each segment, and the joints' terminal
-  // edge lengths.
+// The joints in topology order, their terminal edges as long as the uniform
+// edge length that fills each segment allows (the smallest over each rod's
+// segments there).
+std::vector<Joint> build_joints(const LineGraph& graph, const LinkageTopology& topology,
+                                const LinkageOptions& options) {
+  const int n = options.subdivisions;
+  const int ns = static_cast<int>(topology.segments.size());
   std::vector<double> edge_length(ns);
   for (int s = 0; s < ns; ++s) {
-    const SegmentTopology& seg = topology_.segments[s];
+    const SegmentTopology& seg = topology.segments[s];
     const int joint_ends = (seg.joint[0] >= 0) + (seg.joint[1] >= 0);
     edge_length[s] = seg.length / (n - 0.5 * joint_ends);
   }
-  for (const JointTopology& jt : topology_.joints) {
+  std::vector<Joint> joints;
+  for (const JointTopology& jt : topology.joints) {
     double l[2];
     for (int x = 0; x < 2; ++x) {
       l[x] = std::numeric_limits<double>::infinity();
@@ -67,73 +74,108 @@ RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
           degrees_text(kMinEdgeVectorAngleDegrees) +
           " degree (their normal e_A x e_B is ill-defined there): use rotation joints");
     }
-    joints_.emplace_back(graph.vertices[jt.vertex], jt.tangent[0], jt.tangent[1], jt.normal, l[0],
-                         l[1], options.joint_kind);
+    joints.emplace_back(graph.vertices[jt.vertex], jt.tangent[0], jt.tangent[1], jt.normal, l[0],
+                        l[1], options.joint_kind);
   }
+  return joints;
+}
 
-  // Segments: nodes, least-twisted frames, rest state.
-  for (int s = 0; s < ns; ++s) {
-    const SegmentTopology& seg = topology_.segments[s];
-    std::vector<Eigen::Vector3d> nodes(n + 1);
-    int first_free = 0, last_free = n;
-    if (seg.joint[0] >= 0) {
-      const Eigen::Vector3d e = seg.sign[0] * joints_[seg.joint[0]].edge(seg.label[0]);
-      nodes[0] = graph.vertices[seg.vertex[0]] - 0.5 * e;
-      nodes[1] = graph.vertices[seg.vertex[0]] + 0.5 * e;
-      first_free = 1;
-    } else {
-      nodes[0] = graph.vertices[seg.vertex[0]];
-    }
-    if (seg.joint[1] >= 0) {
-      const Eigen::Vector3d e = seg.sign[1] * joints_[seg.joint[1]].edge(seg.label[1]);
-      nodes[n - 1] = graph.vertices[seg.vertex[1]] - 0.5 * e;
-      nodes[n] = graph.vertices[seg.vertex[1]] + 0.5 * e;
-      last_free = n - 1;
-    } else {
-      nodes[n] = graph.vertices[seg.vertex[1]];
-    }
-    for (int k = first_free + 1; k < last_free; ++k) {
-      const double u = double(k - first_free) / double(last_free - first_free);
-      nodes[k] = (1.0 - u) * nodes[first_free] + u * nodes[last_free];
-    }
-    for (int j = 0; j < n; ++j)
-      if ((nodes[j + 1] - nodes[j]).norm() <= 1e-12 * seg.length)
-        throw ModelError("segment " + std::to_string(s) + " (vertices " +
-                         std::to_string(seg.vertex[0]) + "-" + std::to_string(seg.vertex[1]) +
-                         ") is too short for its joints' terminal edges");
-
-    // Twist-free frames, then thetas putting d2 on the joint normals.
-    const Eigen::Vector3d start_d1 =
-        seg.joint[0] >= 0
-            ? Eigen::Vector3d(joints_[seg.joint[0]].normal().cross(nodes[1] - nodes[0]))
-            : Eigen::Vector3d::Zero();
-    ElasticRod rod(nodes, xshell::stiffness(segment_material(s)),
-                   seg.joint[0] >= 0 ? &start_d1 : nullptr);
-    std::vector<double> thetas(n, 0.0);
-    double theta_start = 0.0, theta_end = 0.0;
-    if (seg.joint[0] >= 0)
-      theta_start = theta_for_normal(rod.reference_frame(0), joints_[seg.joint[0]].normal());
-    if (seg.joint[1] >= 0)
-      theta_end = theta_for_normal(rod.reference_frame(n - 1), joints_[seg.joint[1]].normal());
-    if (seg.joint[0] < 0) theta_start = theta_end;
-    if (seg.joint[1] < 0) theta_end = theta_start;
-    theta_end = theta_start + std::remainder(theta_end - theta_start, 2.0 * M_PI);
-    // Linear in arc length (edge midpoints) between the two end edges.
-    std::vector<double> arc(n, 0.0);
-    for (int j = 1; j < n; ++j)
-      arc[j] = arc[j - 1] + 0.5 * (rod.edge(j - 1).norm() + rod.edge(j).norm());
-    for (int j = 0; j < n; ++j)
-      thetas[j] = theta_start + (theta_end - theta_start) * arc[j] / arc[n - 1];
-    rod.set_configuration(nodes, thetas);
-    rod.update_source_frames();
-    rod.set_rest_state_from_current();
-    if (options.rest_shape == RestShape::Straight) rod.set_rest_straight();
-    if (seg.joint[0] >= 0) rod.set_stretching_share(0, 0.5);
-    if (seg.joint[1] >= 0) rod.set_stretching_share(n - 1, 0.5);
-    rods_.push_back(std::move(rod));
+// The n + 1 nodes of segment s: its terminal edges at joints centred on
+// them, a free end's node on its vertex, the others evenly spaced between.
+std::vector<Eigen::Vector3d> segment_nodes(const LineGraph& graph, const SegmentTopology& seg,
+                                           const std::vector<Joint>& joints, int n, int s) {
+  std::vector<Eigen::Vector3d> nodes(n + 1);
+  int first_free = 0, last_free = n;
+  if (seg.joint[0] >= 0) {
+    const Eigen::Vector3d e = seg.sign[0] * joints[seg.joint[0]].edge(seg.label[0]);
+    nodes[0] = graph.vertices[seg.vertex[0]] - 0.5 * e;
+    nodes[1] = graph.vertices[seg.vertex[0]] + 0.5 * e;
+    first_free = 1;
+  } else {
+    nodes[0] = graph.vertices[seg.vertex[0]];
   }
+  if (seg.joint[1] >= 0) {
+    const Eigen::Vector3d e = seg.sign[1] * joints[seg.joint[1]].edge(seg.label[1]);
+    nodes[n - 1] = graph.vertices[seg.vertex[1]] - 0.5 * e;
+    nodes[n] = graph.vertices[seg.vertex[1]] + 0.5 * e;
+    last_free = n - 1;
+  } else {
+    nodes[n] = graph.vertices[seg.vertex[1]];
+  }
+  for (int k = first_free + 1; k < last_free; ++k) {
+    const double u = double(k - first_free) / double(last_free - first_free);
+    nodes[k] = (1.0 - u) * nodes[first_free] + u * nodes[last_free];
+  }
+  for (int j = 0; j < n; ++j)
+    if ((nodes[j + 1] - nodes[j]).norm() <= 1e-12 * seg.length)
+      throw ModelError("segment " + std::to_string(s) + " (vertices " +
+                       std::to_string(seg.vertex[0]) + "-" + std::to_string(seg.vertex[1]) +
+                       ") is too short for its joints' terminal edges");
+  return nodes;
+}
 
-  // Reduced unknowns.
+// Thetas of the rod's n edges that put d2 on the joint normals at its
+// terminal edges, linear in arc length (edge midpoints) between the two
+// (constant when one end or both are free).
+std::vector<double> normal_aligned_thetas(const ElasticRod& rod, const SegmentTopology& seg,
+                                          const std::vector<Joint>& joints, int n) {
+  std::vector<double> thetas(n, 0.0);
+  double theta_start = 0.0, theta_end = 0.0;
+  if (seg.joint[0] >= 0)
+    theta_start = theta_for_normal(rod.reference_frame(0), joints[seg.joint[0]].normal());
+  if (seg.joint[1] >= 0)
+    theta_end = theta_for_normal(rod.reference_frame(n - 1), joints[seg.joint[1]].normal());
+  if (seg.joint[0] < 0) theta_start = theta_end;
+  if (seg.joint[1] < 0) theta_end = theta_start;
+  theta_end = theta_start + std::remainder(theta_end - theta_start, 2.0 * M_PI);
+  std::vector<double> arc(n, 0.0);
+  for (int j = 1; j < n; ++j)
+    arc[j] = arc[j - 1] + 0.5 * (rod.edge(j - 1).norm() + rod.edge(j).norm());
+  for (int j = 0; j < n; ++j)
+    thetas[j] = theta_start + (theta_end - theta_start) * arc[j] / arc[n - 1];
+  return thetas;
+}
+
+// Segment s as a rod: nodes, twist-free frames, thetas putting d2 on the
+// joint normals, rest state, and half the stretching of a terminal edge at a
+// joint (the segment on the other side owns the other half).
+ElasticRod build_segment(const LineGraph& graph, const SegmentTopology& seg,
+                         const std::vector<Joint>& joints, const Material& material,
+                         const LinkageOptions& options, int s) {
+  const int n = options.subdivisions;
+  const std::vector<Eigen::Vector3d> nodes = segment_nodes(graph, seg, joints, n, s);
+  const Eigen::Vector3d start_d1 =
+      seg.joint[0] >= 0 ? Eigen::Vector3d(joints[seg.joint[0]].normal().cross(nodes[1] - nodes[0]))
+                        : Eigen::Vector3d::Zero();
+  ElasticRod rod(nodes, xshell::stiffness(material), seg.joint[0] >= 0 ? &start_d1 : nullptr);
+  rod.set_configuration(nodes, normal_aligned_thetas(rod, seg, joints, n));
+  rod.update_source_frames();
+  rod.set_rest_state_from_current();
+  if (options.rest_shape == RestShape::Straight) rod.set_rest_straight();
+  if (seg.joint[0] >= 0) rod.set_stretching_share(0, 0.5);
+  if (seg.joint[1] >= 0) rod.set_stretching_share(n - 1, 0.5);
+  return rod;
+}
+}  // namespace
+
+RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
+    : graph_(graph), options_(options), topology_(build_topology(graph)) {
+  const int ns = static_cast<int>(topology_.segments.size());
+  check_options(options, ns);
+  joints_ = build_joints(graph, topology_, options);
+  for (int s = 0; s < ns; ++s)
+    rods_.push_back(
+        build_segment(graph, topology_.segments[s], joints_, segment_material(s), options, s));
+  number_unknowns();
+  // The joints reproduce the terminal edges and thetas just built.
+  set_dofs(dofs());
+  record_theta_hints();
+  for (const ElasticRod& rod : rods_) input_segment_dofs_.push_back(rod.dofs());
+}
+
+void RodLinkage::number_unknowns() {
+  const int n = options_.subdivisions;
+  const int ns = static_cast<int>(rods_.size());
   slots_.resize(ns);
   segment_offset_.resize(ns);
   int next = 0;
@@ -163,10 +205,6 @@ RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
     next += 9;
   }
   num_dofs_ = next;
-  // The joints reproduce the terminal edges and thetas just built.
-  set_dofs(dofs());
-  record_theta_hints();
-  for (const ElasticRod& rod : rods_) input_segment_dofs_.push_back(rod.dofs());
 }
 
 Eigen::VectorXd RodLinkage::dofs() const {

@@ -168,6 +168,9 @@ class RodLinkage {
     std::array<int, 7> controlled[2];  // full variable of each terminal value, per side
   };
   LocalMap local_map(int s, bool with_hessians) const;
+  // Numbers the reduced unknowns (slots_, the offsets, num_dofs_) in the
+  // order described above.
+  void number_unknowns();
   TerminalEdge<double> terminal(int s, int side) const;
   // Keeps every terminal theta as the branch hint of set_dofs (see theta_hints_).
   void record_theta_hints();

@@ -144,6 +144,13 @@ class LinkageProblem {
   // The energy report of the current configuration, given its elastic part.
   EnergyReport energy_with(const RodEnergy& elastic) const;
   void fix(int index) { fixed_[index] = true; }
+  // Construction steps (statics_setup.cpp): fixes the unknowns a support
+  // holds, at a joint (aligning an edge-vector joint it orients) or at a
+  // free rod end; sets the dead loads of setup.
+  void fix_support(const VertexSupport& support);
+  void fix_at_joint(int j, SupportDof dof, int vertex);
+  void fix_at_free_end(int vertex, SupportDof dof);
+  void set_loads(const StaticsSetup& setup);
 
   RodLinkage linkage_;
   std::vector<bool> fixed_;

@@ -23,6 +23,7 @@ struct EndRef {
   bool valid() const { return segment >= 0; }
 };
 
+// "vertex v", for messages.
 std::string vertex_name(int v) { return "vertex " + std::to_string(v); }
 
 // Pairs the straightest two incident segments (valence 3 and 4).
@@ -53,6 +54,8 @@ void pair_segments(const std::vector<Incidence>& inc, std::vector<std::array<End
   }
 }
 
+// Chains of partnered segments, one per rod, each started from its lowest
+// segment; rod_of_segment gets each segment's rod.
 std::vector<RodChain> build_rods(int num_segments,
                                  const std::vector<std::array<EndRef, 2>>& partner,
                                  std::vector<int>& rod_of_segment) {
@@ -85,6 +88,8 @@ std::vector<RodChain> build_rods(int num_segments,
   return rods;
 }
 
+// Normal of the best-fit plane through v, its neighbours and theirs (any
+// perpendicular of fallback_tangent when they lie on a line).
 Eigen::Vector3d best_fit_normal(const LineGraph& graph,
                                 const std::vector<std::vector<int>>& neighbours, int v,
                                 const Eigen::Vector3d& fallback_tangent) {
@@ -105,16 +110,15 @@ Eigen::Vector3d best_fit_normal(const LineGraph& graph,
   return eig.eigenvectors().col(0);
 }
 
-}  // namespace
-
-LinkageTopology build_topology(const LineGraph& graph) {
+// Segment table (end vertices, lengths) and, per vertex, its incident
+// segment ends and its neighbouring vertices.
+void collect_incidences(const LineGraph& graph, LinkageTopology& topo,
+                        std::vector<std::vector<Incidence>>& incident,
+                        std::vector<std::vector<int>>& neighbours) {
   const int nv = static_cast<int>(graph.vertices.size());
   const int ns = static_cast<int>(graph.edges.size());
-  LinkageTopology topo;
-  topo.valence = valences(graph);
-
-  std::vector<std::vector<Incidence>> incident(nv);
-  std::vector<std::vector<int>> neighbours(nv);
+  incident.assign(nv, {});
+  neighbours.assign(nv, {});
   topo.segments.resize(ns);
   for (int s = 0; s < ns; ++s) {
     const auto [a, b] = graph.edges[s];
@@ -126,109 +130,159 @@ LinkageTopology build_topology(const LineGraph& graph) {
     neighbours[a].push_back(b);
     neighbours[b].push_back(a);
   }
-  for (int v = 0; v < nv; ++v) {
-    if (topo.valence[v] == 0) throw ModelError(vertex_name(v) + " has no edges");
-    if (topo.valence[v] > 4)
-      throw ModelError(vertex_name(v) + " has valence " + std::to_string(topo.valence[v]) +
+}
+
+// Rejects isolated vertices and vertices of valence above 4.
+void check_valences(const std::vector<int>& valence) {
+  for (int v = 0; v < static_cast<int>(valence.size()); ++v) {
+    if (valence[v] == 0) throw ModelError(vertex_name(v) + " has no edges");
+    if (valence[v] > 4)
+      throw ModelError(vertex_name(v) + " has valence " + std::to_string(valence[v]) +
                        "; a scissor joint joins at most 4 segments");
   }
+}
 
-  // Glue segments into rods.
+// Glues the segments into rods (straightest pairs at every vertex) and
+// records each segment's rod.
+void glue_rods(const std::vector<std::vector<Incidence>>& incident, LinkageTopology& topo) {
+  const int ns = static_cast<int>(topo.segments.size());
   std::vector<std::array<EndRef, 2>> partner(ns);
-  for (int v = 0; v < nv; ++v) pair_segments(incident[v], partner);
+  for (const std::vector<Incidence>& inc : incident) pair_segments(inc, partner);
   std::vector<int> rod_of_segment;
   topo.rods = build_rods(ns, partner, rod_of_segment);
   for (int s = 0; s < ns; ++s) topo.segments[s].rod = rod_of_segment[s];
+}
 
-  // Joints with their two rods and base (unoriented) tangents.
+// +1 when segment s runs along its rod's direction, -1 otherwise.
+int rod_direction(const LinkageTopology& topo, int s) {
+  const RodChain& rod = topo.rods[topo.segments[s].rod];
+  for (size_t k = 0; k < rod.segments.size(); ++k)
+    if (rod.segments[k] == s) return rod.forward[k] ? 1 : -1;
+  return 1;
+}
+
+// The joint at vertex v (valence 2 or more) with its two rods and segment
+// ends; tangent gets its unit rod tangents, not yet oriented.
+JointTopology make_joint(const LinkageTopology& topo, int v, const std::vector<Incidence>& incident,
+                         std::array<Eigen::Vector3d, 2>& tangent) {
+  JointTopology joint;
+  joint.vertex = v;
+  int label = 0;
+  for (const Incidence& in : incident) {
+    const int rod = topo.segments[in.segment].rod;
+    int slot = (joint.rod[0] == rod) ? 0 : (joint.rod[1] == rod ? 1 : -1);
+    if (slot < 0) {
+      if (label > 1) throw ModelError(vertex_name(v) + ": more than two rods meet at this joint");
+      slot = label++;
+      joint.rod[slot] = rod;
+      tangent[slot] = Eigen::Vector3d::Zero();
+    }
+    // Rod-oriented direction of the segment at this vertex.
+    const Eigen::Vector3d seg_dir = in.end == 0 ? in.away : Eigen::Vector3d(-in.away);
+    const int forward = rod_direction(topo, in.segment);
+    tangent[slot] += forward * seg_dir;
+    joint.ends[slot].push_back({in.segment, in.end == 0, forward});
+  }
+  if (joint.rod[0] == joint.rod[1] || label != 2)
+    throw ModelError(vertex_name(v) + ": a rod passes through this joint twice");
+  for (auto& t : tangent) t.normalize();
+  joint.collinear =
+      tangent[0].cross(tangent[1]).norm() < std::sin(kCollinearDegrees * M_PI / 180.0);
+  return joint;
+}
+
+// Joints in vertex order, and their base (unoriented) tangents.
+std::vector<std::array<Eigen::Vector3d, 2>> build_joints(
+    const std::vector<std::vector<Incidence>>& incident, LinkageTopology& topo) {
+  const int nv = static_cast<int>(incident.size());
   topo.joint_of_vertex.assign(nv, -1);
   std::vector<std::array<Eigen::Vector3d, 2>> base_tangent;
-  auto rod_direction = [&](int s) {
-    const RodChain& rod = topo.rods[topo.segments[s].rod];
-    for (size_t k = 0; k < rod.segments.size(); ++k)
-      if (rod.segments[k] == s) return rod.forward[k] ? 1 : -1;
-    return 1;
-  };
   for (int v = 0; v < nv; ++v) {
     if (topo.valence[v] < 2) continue;
-    JointTopology joint;
-    joint.vertex = v;
-    int label = 0;
     std::array<Eigen::Vector3d, 2> tangent;
-    for (const Incidence& in : incident[v]) {
-      const int rod = topo.segments[in.segment].rod;
-      int slot = (joint.rod[0] == rod) ? 0 : (joint.rod[1] == rod ? 1 : -1);
-      if (slot < 0) {
-        if (label > 1) throw ModelError(vertex_name(v) + ": more than two rods meet at this joint");
-        slot = label++;
-        joint.rod[slot] = rod;
-        tangent[slot] = Eigen::Vector3d::Zero();
-      }
-      // Rod-oriented direction of the segment at this vertex.
-      const Eigen::Vector3d seg_dir = in.end == 0 ? in.away : Eigen::Vector3d(-in.away);
-      const int forward = rod_direction(in.segment);
-      tangent[slot] += forward * seg_dir;
-      joint.ends[slot].push_back({in.segment, in.end == 0, forward});
-    }
-    if (joint.rod[0] == joint.rod[1] || label != 2)
-      throw ModelError(vertex_name(v) + ": a rod passes through this joint twice");
-    for (auto& t : tangent) t.normalize();
-    joint.collinear =
-        tangent[0].cross(tangent[1]).norm() < std::sin(kCollinearDegrees * M_PI / 180.0);
+    JointTopology joint = make_joint(topo, v, incident[v], tangent);
     topo.joint_of_vertex[v] = static_cast<int>(topo.joints.size());
     topo.joints.push_back(std::move(joint));
     base_tangent.push_back(tangent);
   }
-  const int nj = static_cast<int>(topo.joints.size());
+  return base_tangent;
+}
 
-  // Raw normals: regular joints from their rods, collinear ones from the
-  // nearest regular joints (sign-aligned), else from a best-fit plane.
+// Raw normal of collinear joint j: the sign-aligned sum of the normals of
+// the nearest regular joints (breadth first through the graph), else that
+// of the best-fit plane, never along the rods.
+Eigen::Vector3d collinear_normal(const LineGraph& graph, const LinkageTopology& topo,
+                                 const std::vector<std::vector<int>>& neighbours,
+                                 const std::vector<Eigen::Vector3d>& normal,
+                                 const Eigen::Vector3d& t, int j) {
+  const int v0 = topo.joints[j].vertex;
+  std::vector<int> distance(graph.vertices.size(), -1);
+  std::deque<int> queue = {v0};
+  distance[v0] = 0;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int found_at = -1;
+  while (!queue.empty()) {
+    const int v = queue.front();
+    queue.pop_front();
+    if (found_at >= 0 && distance[v] > found_at) break;
+    const int k = topo.joint_of_vertex[v];
+    if (v != v0 && k >= 0 && !topo.joints[k].collinear) {
+      found_at = distance[v];
+      sum += (sum.dot(normal[k]) < 0.0 ? -1.0 : 1.0) * normal[k];
+      continue;
+    }
+    for (int w : neighbours[v])
+      if (distance[w] < 0) {
+        distance[w] = distance[v] + 1;
+        queue.push_back(w);
+      }
+  }
+  Eigen::Vector3d n = (found_at >= 0 && sum.norm() > 1e-8)
+                          ? Eigen::Vector3d(sum.normalized())
+                          : best_fit_normal(graph, neighbours, v0, t);
+  // The rods at a collinear joint must lie in its plane: a normal along
+  // them is no normal.
+  if (std::abs(n.dot(t)) > 0.99) n = best_fit_normal(graph, neighbours, v0, t);
+  if (std::abs(n.dot(t)) > 0.99) n = any_perpendicular(t);
+  return n;
+}
+
+// Raw normals: regular joints from their rods, collinear ones from the
+// nearest regular joints (sign-aligned), else from a best-fit plane.
+std::vector<Eigen::Vector3d> raw_normals(
+    const LineGraph& graph, const LinkageTopology& topo,
+    const std::vector<std::vector<int>>& neighbours,
+    const std::vector<std::array<Eigen::Vector3d, 2>>& base_tangent) {
+  const int nj = static_cast<int>(topo.joints.size());
   std::vector<Eigen::Vector3d> normal(nj);
   for (int j = 0; j < nj; ++j)
     if (!topo.joints[j].collinear)
       normal[j] = base_tangent[j][0].cross(base_tangent[j][1]).normalized();
-  for (int j = 0; j < nj; ++j) {
-    if (!topo.joints[j].collinear) continue;
-    const int v0 = topo.joints[j].vertex;
-    std::vector<int> distance(nv, -1);
-    std::deque<int> queue = {v0};
-    distance[v0] = 0;
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    int found_at = -1;
-    while (!queue.empty()) {
-      const int v = queue.front();
-      queue.pop_front();
-      if (found_at >= 0 && distance[v] > found_at) break;
-      const int k = topo.joint_of_vertex[v];
-      if (v != v0 && k >= 0 && !topo.joints[k].collinear) {
-        found_at = distance[v];
-        sum += (sum.dot(normal[k]) < 0.0 ? -1.0 : 1.0) * normal[k];
-        continue;
-      }
-      for (int w : neighbours[v])
-        if (distance[w] < 0) {
-          distance[w] = distance[v] + 1;
-          queue.push_back(w);
-        }
-    }
-    const Eigen::Vector3d t = base_tangent[j][0];
-    normal[j] = (found_at >= 0 && sum.norm() > 1e-8) ? sum.normalized()
-                                                     : best_fit_normal(graph, neighbours, v0, t);
-    // The rods at a collinear joint must lie in its plane: a normal along
-    // them is no normal.
-    if (std::abs(normal[j].dot(t)) > 0.99) normal[j] = best_fit_normal(graph, neighbours, v0, t);
-    if (std::abs(normal[j].dot(t)) > 0.99) normal[j] = any_perpendicular(t);
-  }
+  for (int j = 0; j < nj; ++j)
+    if (topo.joints[j].collinear)
+      normal[j] = collinear_normal(graph, topo, neighbours, normal, base_tangent[j][0], j);
+  return normal;
+}
 
-  // Orient the normals consistently, breadth first through the joints.
-  std::vector<std::vector<int>> joint_neighbours(nj);
+// Per joint, the joints that share a segment with it (in segment order).
+std::vector<std::vector<int>> joint_neighbours(const LinkageTopology& topo) {
+  std::vector<std::vector<int>> out(topo.joints.size());
   for (const auto& seg : topo.segments) {
     const int a = topo.joint_of_vertex[seg.vertex[0]], b = topo.joint_of_vertex[seg.vertex[1]];
     if (a >= 0 && b >= 0) {
-      joint_neighbours[a].push_back(b);
-      joint_neighbours[b].push_back(a);
+      out[a].push_back(b);
+      out[b].push_back(a);
     }
   }
+  return out;
+}
+
+// Orients the normals consistently, breadth first through the joints, and
+// rejects a linkage where they cannot agree (non-orientable): there no
+// labelling opens all joints the same way.
+void orient_normals(const LinkageTopology& topo, const std::vector<std::vector<int>>& adjacent,
+                    std::vector<Eigen::Vector3d>& normal) {
+  const int nj = static_cast<int>(normal.size());
   std::vector<bool> oriented(nj, false);
   for (int root = 0; root < nj; ++root) {
     if (oriented[root]) continue;
@@ -237,7 +291,7 @@ LinkageTopology build_topology(const LineGraph& graph) {
     while (!queue.empty()) {
       const int j = queue.front();
       queue.pop_front();
-      for (int k : joint_neighbours[j]) {
+      for (int k : adjacent[j]) {
         if (oriented[k]) continue;
         if (normal[k].dot(normal[j]) < 0.0) normal[k] = -normal[k];
         oriented[k] = true;
@@ -245,28 +299,29 @@ LinkageTopology build_topology(const LineGraph& graph) {
       }
     }
   }
-
-  // Every joint's normals must agree with its neighbours' after orientation;
-  // where they cannot (a non-orientable linkage), no labelling opens all
-  // joints the same way.
   for (int j = 0; j < nj; ++j)
-    for (int k : joint_neighbours[j])
+    for (int k : adjacent[j])
       if (normal[j].dot(normal[k]) < -0.5)
         throw ModelError(
             vertex_name(topo.joints[j].vertex) + " and " + vertex_name(topo.joints[k].vertex) +
             ": the joint normals cannot be oriented consistently (non-orientable linkage)");
+}
 
-  // Directions of the rods, breadth first through the regular joints. At a
-  // joint with rods r, q and base tangents tr, tq, s = sign((tr x tq) . n).
-  // Giving each rod a family (A or B), the same at all its joints, the
-  // directions o with (t_A x t_B) . n > 0 satisfy o_q = o_r s if r is A and
-  // -o_r s if r is B. Where a rod crosses another twice (curved rods), the
-  // two crossings may ask for opposite directions: the first one reached
-  // wins, and the joint's labels follow its own geometry below.
+// Directions of the rods (+1: as built, -1: reversed), breadth first through
+// the regular joints. At a joint with rods r, q and base tangents tr, tq,
+// s = sign((tr x tq) . n). Giving each rod a family (A or B), the same at
+// all its joints, the directions o with (t_A x t_B) . n > 0 satisfy
+// o_q = o_r s if r is A and -o_r s if r is B. Where a rod crosses another
+// twice (curved rods), the two crossings may ask for opposite directions:
+// the first one reached wins, and the joint's labels follow its own
+// geometry (label_joint).
+std::vector<int> rod_directions(const LinkageTopology& topo,
+                                const std::vector<std::array<Eigen::Vector3d, 2>>& base_tangent,
+                                const std::vector<Eigen::Vector3d>& normal) {
   const int nr = static_cast<int>(topo.rods.size());
   std::vector<int> family(nr, -1), direction(nr, 1);
   std::vector<std::vector<int>> joints_of_rod(nr);
-  for (int j = 0; j < nj; ++j)
+  for (int j = 0; j < static_cast<int>(topo.joints.size()); ++j)
     if (!topo.joints[j].collinear)
       for (int r : topo.joints[j].rod) joints_of_rod[r].push_back(j);
   for (int root = 0; root < nr; ++root) {
@@ -290,45 +345,69 @@ LinkageTopology build_topology(const LineGraph& graph) {
       }
     }
   }
+  return direction;
+}
 
-  // Apply the directions to the rods, the labels and tangents to the joints.
-  for (int r = 0; r < nr; ++r) {
+// Reverses the rods whose direction is -1.
+void apply_rod_directions(const std::vector<int>& direction, std::vector<RodChain>& rods) {
+  for (size_t r = 0; r < rods.size(); ++r) {
     if (direction[r] > 0) continue;
-    RodChain& rod = topo.rods[r];
+    RodChain& rod = rods[r];
     std::reverse(rod.segments.begin(), rod.segments.end());
     std::reverse(rod.forward.begin(), rod.forward.end());
     for (size_t k = 0; k < rod.forward.size(); ++k) rod.forward[k] = !rod.forward[k];
   }
-  for (int j = 0; j < nj; ++j) {
-    JointTopology& joint = topo.joints[j];
-    for (int slot = 0; slot < 2; ++slot) {
-      const int d = direction[joint.rod[slot]];
-      base_tangent[j][slot] *= d;
-      for (SegmentEnd& end : joint.ends[slot]) end.sign *= d;
-    }
-    const Eigen::Vector3d n = normal[j];
-    std::array<Eigen::Vector3d, 2> t;
-    for (int slot = 0; slot < 2; ++slot)
-      t[slot] = (base_tangent[j][slot] - base_tangent[j][slot].dot(n) * n).normalized();
-    if (t[0].cross(t[1]).dot(n) < 0.0) {
-      std::swap(joint.ends[0], joint.ends[1]);
-      std::swap(joint.rod[0], joint.rod[1]);
-      std::swap(t[0], t[1]);
-    }
-    joint.tangent = t;
-    joint.normal = n;
-    joint.opening_angle = std::atan2(t[0].cross(t[1]).dot(n), t[0].dot(t[1]));
-    if (!(joint.opening_angle > 0.0 && joint.opening_angle < M_PI))
-      throw ModelError(vertex_name(joint.vertex) + ": its two rods are exactly collinear");
-    for (int slot = 0; slot < 2; ++slot)
-      for (const SegmentEnd& end : joint.ends[slot]) {
-        SegmentTopology& seg = topo.segments[end.segment];
-        const int side = end.at_start ? 0 : 1;
-        seg.joint[side] = j;
-        seg.label[side] = slot;
-        seg.sign[side] = end.sign;
-      }
+}
+
+// Joint j's final labels (A, B with (t_A x t_B) . n > 0), tangents, normal
+// and opening angle, and the joint, labels and signs of its segments' ends.
+void label_joint(int j, const std::vector<int>& direction, std::array<Eigen::Vector3d, 2> base,
+                 const Eigen::Vector3d& n, LinkageTopology& topo) {
+  JointTopology& joint = topo.joints[j];
+  for (int slot = 0; slot < 2; ++slot) {
+    const int d = direction[joint.rod[slot]];
+    base[slot] *= d;
+    for (SegmentEnd& end : joint.ends[slot]) end.sign *= d;
   }
+  std::array<Eigen::Vector3d, 2> t;
+  for (int slot = 0; slot < 2; ++slot) t[slot] = (base[slot] - base[slot].dot(n) * n).normalized();
+  if (t[0].cross(t[1]).dot(n) < 0.0) {
+    std::swap(joint.ends[0], joint.ends[1]);
+    std::swap(joint.rod[0], joint.rod[1]);
+    std::swap(t[0], t[1]);
+  }
+  joint.tangent = t;
+  joint.normal = n;
+  joint.opening_angle = std::atan2(t[0].cross(t[1]).dot(n), t[0].dot(t[1]));
+  if (!(joint.opening_angle > 0.0 && joint.opening_angle < M_PI))
+    throw ModelError(vertex_name(joint.vertex) + ": its two rods are exactly collinear");
+  for (int slot = 0; slot < 2; ++slot)
+    for (const SegmentEnd& end : joint.ends[slot]) {
+      SegmentTopology& seg = topo.segments[end.segment];
+      const int side = end.at_start ? 0 : 1;
+      seg.joint[side] = j;
+      seg.label[side] = slot;
+      seg.sign[side] = end.sign;
+    }
+}
+
+}  // namespace
+
+LinkageTopology build_topology(const LineGraph& graph) {
+  LinkageTopology topo;
+  topo.valence = valences(graph);
+  std::vector<std::vector<Incidence>> incident;
+  std::vector<std::vector<int>> neighbours;
+  collect_incidences(graph, topo, incident, neighbours);
+  check_valences(topo.valence);
+  glue_rods(incident, topo);
+  const std::vector<std::array<Eigen::Vector3d, 2>> base_tangent = build_joints(incident, topo);
+  std::vector<Eigen::Vector3d> normal = raw_normals(graph, topo, neighbours, base_tangent);
+  orient_normals(topo, joint_neighbours(topo), normal);
+  const std::vector<int> direction = rod_directions(topo, base_tangent, normal);
+  apply_rod_directions(direction, topo.rods);
+  for (int j = 0; j < static_cast<int>(topo.joints.size()); ++j)
+    label_joint(j, direction, base_tangent[j], normal[j], topo);
   return topo;
 }
 

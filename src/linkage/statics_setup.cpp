@@ -1,0 +1,261 @@
+// Construction of a LinkageProblem from a StaticsSetup (statics_problem.hpp):
+// the scales of the convergence measure, the supports (the default pin, the
+// prescribed displacements, the unknowns they fix) and the dead loads.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "model_error.hpp"
+#include "statics_problem.hpp"
+
+namespace xshell {
+
+namespace {
+
+// "vertex v", for messages.
+std::string vertex_name(int v) { return "vertex " + std::to_string(v); }
+
+// Rejects a vertex index outside the linkage's nv vertices; what names the
+// support or load that gave it.
+void check_vertex(int v, int nv, const char* what) {
+  if (v < 0 || v >= nv)
+    throw ModelError(std::string(what) + " names " + vertex_name(v) + ", but the linkage has " +
+                     std::to_string(nv) + " vertices");
+}
+
+// Axis-aligned bounding box of the input vertices.
+struct Box {
+  Eigen::Vector3d lo, hi;
+};
+Box bounding_box(const std::vector<Eigen::Vector3d>& vertices) {
+  Eigen::Vector3d lo = vertices[0], hi = lo;
+  for (const auto& v : vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  return {lo, hi};
+}
+
+// EI_max: the largest bending stiffness of any segment.
+double largest_bending_stiffness(const RodLinkage& l) {
+  double bending_max = 0.0;
+  for (int s = 0; s < l.num_segments(); ++s)
+    bending_max = std::max(
+        {bending_max, l.segment(s).stiffness().bending1, l.segment(s).stiffness().bending2});
+  return bending_max;
+}
+
+// The vertex of the joint nearest centre (ties within 1e-12 length_scale:
+// lowest index), pinned when no support is given.
+int central_joint_vertex(const RodLinkage& l, const Eigen::Vector3d& centre, double length_scale) {
+  if (l.num_joints() == 0)
+    throw ModelError(
+        "the linkage has no joint to pin by default: give supports that hold it in place");
+  int best = -1;
+  for (int j = 0; j < l.num_joints(); ++j) {
+    const int v = l.topology().joints[j].vertex;
+    if (best < 0 || (l.graph().vertices[v] - centre).norm() <
+                        (l.graph().vertices[best] - centre).norm() - 1e-12 * length_scale)
+      best = v;
+  }
+  return best;
+}
+
+// The position components a support holds, and whether it clamps the
+// orientation.
+struct HeldComponents {
+  bool held[3] = {false, false, false};
+  bool clamped = false;
+};
+HeldComponents held_components(const VertexSupport& support) {
+  HeldComponents h;
+  for (SupportDof dof : support.fix) {
+    if (dof == SupportDof::Position) h.held[0] = h.held[1] = h.held[2] = true;
+    if (dof == SupportDof::X) h.held[0] = true;
+    if (dof == SupportDof::Y) h.held[1] = true;
+    if (dof == SupportDof::Z) h.held[2] = true;
+    if (dof == SupportDof::Orientation) h.clamped = true;
+  }
+  return h;
+}
+
+// Checks a support's vertex and displacement, and moves the position
+// components it holds in `displaced` (reduced unknowns) to input +
+// displacement (the input: the graph's vertex, or a free end's input nodes).
+void displace_support(const RodLinkage& l, const VertexSupport& support,
+                      Eigen::VectorXd& displaced) {
+  check_vertex(support.vertex, static_cast<int>(l.graph().vertices.size()), "a support");
+  if (!support.displacement.allFinite())
+    throw ModelError("support at " + vertex_name(support.vertex) +
+                     ": the displacement is not finite");
+  if (support.displacement.isZero(0.0)) return;
+  const HeldComponents h = held_components(support);
+  for (int c = 0; c < 3; ++c)
+    if (support.displacement[c] != 0.0 && !h.held[c])
+      throw ModelError("support at " + vertex_name(support.vertex) +
+                       ": its displacement moves the " + std::string(1, char('x' + c)) +
+                       " component, which the support does not hold (fix \"position\" or \"" +
+                       std::string(1, char('x' + c)) + "\")");
+  const int j = l.topology().joint_of_vertex[support.vertex];
+  if (j >= 0) {
+    const int o = l.joint_dof_offset(j) + kPosition;
+    for (int c = 0; c < 3; ++c)
+      if (h.held[c])
+        displaced[o + c] = l.graph().vertices[support.vertex][c] + support.displacement[c];
+    return;
+  }
+  const RodLinkage::FreeEnd f = l.free_end(support.vertex);
+  const int s = f.segment, end = f.end_node, next = f.next_node;
+  const Eigen::VectorXd& input = l.input_segment_dofs()[s];
+  for (int node : {end, next}) {
+    if (node == next && !h.clamped) continue;
+    for (int c = 0; c < 3; ++c) {
+      const int r = l.reduced_index(s, 3 * node + c);
+      if (h.held[c] && r >= 0) displaced[r] = input[3 * node + c] + support.displacement[c];
+    }
+  }
+}
+
+}  // namespace
+
+LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup)
+    : linkage_(std::move(linkage)) {
+  fixed_.assign(linkage_.num_dofs(), false);
+  const Box box = bounding_box(linkage_.graph().vertices);
+  length_scale_ = (box.hi - box.lo).norm();
+  force_scale_ = largest_bending_stiffness(linkage_) / (length_scale_ * length_scale_);
+
+  supports_ = setup.supports;
+  if (supports_.empty()) {
+    default_support_ = central_joint_vertex(linkage_, 0.5 * (box.lo + box.hi), length_scale_);
+    supports_.push_back({default_support_, {SupportDof::Position, SupportDof::Orientation}});
+  }
+  Eigen::VectorXd displaced = linkage_.dofs();
+  for (const VertexSupport& support : supports_) displace_support(linkage_, support, displaced);
+  linkage_.set_dofs(displaced);
+  for (const VertexSupport& support : supports_) fix_support(support);
+  free_position_.assign(linkage_.num_dofs(), -1);
+  for (int i = 0; i < linkage_.num_dofs(); ++i)
+    if (!fixed_[i]) {
+      free_position_[i] = static_cast<int>(free_.size());
+      free_.push_back(i);
+    }
+  set_loads(setup);
+}
+
+void LinkageProblem::fix_support(const VertexSupport& support) {
+  const int j = linkage_.topology().joint_of_vertex[support.vertex];
+  for (SupportDof dof : support.fix) {
+    if (j >= 0)
+      fix_at_joint(j, dof, support.vertex);
+    else
+      fix_at_free_end(support.vertex, dof);
+  }
+}
+
+void LinkageProblem::fix_at_joint(int j, SupportDof dof, int vertex) {
+  const RodLinkage& l = linkage_;
+  const int o = l.joint_dof_offset(j);
+  if (l.joint(j).kind() == JointKind::EdgeVectors && dof == SupportDof::Orientation) {
+    // The seed's constrained joint: directions fixed, lengths free.
+    linkage_.align_joint(j);
+    for (int base : {kEdgeA, kEdgeB})
+      for (int c = 1; c < 3; ++c) fix(o + base + c);
+    return;
+  }
+  if (l.joint(j).kind() == JointKind::EdgeVectors && dof == SupportDof::OpeningAngle)
+    throw ModelError(
+        "support at " + vertex_name(vertex) +
+        ": edge-vector joints have no opening-angle unknown; fix \"orientation\" (both rod "
+        "directions, hence the angle too) or use rotation joints");
+  switch (dof) {
+    case SupportDof::Position:
+      for (int c = 0; c < 3; ++c) fix(o + kPosition + c);
+      break;
+    case SupportDof::X:
+      fix(o + kPosition);
+      break;
+    case SupportDof::Y:
+      fix(o + kPosition + 1);
+      break;
+    case SupportDof::Z:
+      fix(o + kPosition + 2);
+      break;
+    case SupportDof::Orientation:
+      for (int c = 0; c < 3; ++c) fix(o + kOmega + c);
+      break;
+    case SupportDof::OpeningAngle:
+      fix(o + kAlpha);
+      break;
+  }
+}
+
+void LinkageProblem::fix_at_free_end(int vertex, SupportDof dof) {
+  const RodLinkage& l = linkage_;
+  const RodLinkage::FreeEnd f = l.free_end(vertex);
+  const int s = f.segment, end = f.end_node, next = f.next_node, edge = f.edge;
+  const ElasticRod& rod = l.segment(s);
+  auto fix_full = [&](int full) {
+    const int r = l.reduced_index(s, full);
+    if (r < 0)
+      throw ModelError("support at " + vertex_name(vertex) +
+                       ": the end edge is too short to clamp (raise subdivisions)");
+    fix(r);
+  };
+  switch (dof) {
+    case SupportDof::Position:
+      for (int c = 0; c < 3; ++c) fix_full(3 * end + c);
+      break;
+    case SupportDof::X:
+      fix_full(3 * end);
+      break;
+    case SupportDof::Y:
+      fix_full(3 * end + 1);
+      break;
+    case SupportDof::Z:
+      fix_full(3 * end + 2);
+      break;
+    case SupportDof::Orientation:
+      for (int c = 0; c < 3; ++c) {
+        fix_full(3 * end + c);
+        fix_full(3 * next + c);
+      }
+      fix_full(rod.theta_dof(edge));
+      break;
+    case SupportDof::OpeningAngle:
+      throw ModelError("support at " + vertex_name(vertex) +
+                       ": a free rod end has no opening angle to fix");
+  }
+}
+
+void LinkageProblem::set_loads(const StaticsSetup& setup) {
+  const RodLinkage& l = linkage_;
+  point_forces_ = Eigen::VectorXd::Zero(l.num_dofs());
+  for (int s = 0; s < l.num_segments(); ++s) {
+    const ElasticRod& rod = l.segment(s);
+    const Eigen::VectorXd mass = rod.lumped_mass();
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(rod.num_dofs());
+    for (int n = 0; n < rod.num_nodes(); ++n) f.segment<3>(3 * n) = mass[3 * n] * setup.gravity;
+    segment_forces_.push_back(f);
+  }
+  for (const PointLoad& load : setup.forces) {
+    check_vertex(load.vertex, static_cast<int>(l.graph().vertices.size()), "a force");
+    const int j = l.topology().joint_of_vertex[load.vertex];
+    if (j >= 0) {
+      point_forces_.segment<3>(l.joint_dof_offset(j) + kPosition) += load.force;
+    } else {
+      const RodLinkage::FreeEnd f = l.free_end(load.vertex);
+      segment_forces_[f.segment].segment<3>(3 * f.end_node) += load.force;
+    }
+  }
+  for (const Eigen::VectorXd& f : segment_forces_) has_segment_loads_.push_back(!f.isZero(0.0));
+  has_point_loads_ = !point_forces_.isZero(0.0);
+  // Point forces act on joint positions, which the input fixes: the
+  // graph's vertices.
+  input_dofs_ = Eigen::VectorXd::Zero(l.num_dofs());
+  for (int j = 0; j < l.num_joints(); ++j)
+    input_dofs_.segment<3>(l.joint_dof_offset(j) + kPosition) =
+        l.graph().vertices[l.topology().joints[j].vertex];
+}
+
+}  // namespace xshell
