@@ -1,15 +1,14 @@
-// Conversions between the two parametrizations of one joint state
-// (joint.hpp): rotation joints (p, omega, alpha, l_A, l_B with a bisector
-// frame; seed section 5) and edge-vector joints (p, e_A, e_B; seed sections
-// 3-4). Both describe the same geometry, the position p and the two edge
-// vectors, with the normal n = e_A x e_B / |e_A x e_B|:
+// Conversions between the two parametrizations of one joint state (joint.hpp): rotation joints (p,
+// omega, alpha, l_A, l_B with a bisector frame; docs/model.md section 5.2) and edge-vector joints
+// (p, c_A, c_B; docs/model.md section 5.4). Both describe the same geometry, the position p and the
+// two edge vectors, with the normal n = e_A x e_B / |e_A x e_B|:
 //   rotation -> edge vectors: e_X = l_X t_X, expressed in bases aligned
 //     with the current directions, so c_X = (l_X, 0, 0);
 //   edge vectors -> rotation: alpha = angle(e_A, e_B) in (0, pi),
 //     l_X = |e_X|, and a bisector frame that reproduces the directions with
 //     omega = 0.
-// The terminal edges (nodes and theta) of every incident segment are the
-// same before and after (tested in tests/linkage/edge_vector_joint_test.cpp).
+// The terminal edges (nodes and theta) of every incident segment are the same before and after
+// (tested in tests/linkage/edge_vector_joint_test.cpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -18,7 +17,8 @@
 
 namespace xshell {
 
-// A joint's geometry as the seed's edge vectors, in global coordinates.
+// A joint's geometry as its edge vectors e_A, e_B in global coordinates (docs/model.md section
+// 5.4).
 struct JointEdgeVectors {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   Eigen::Vector3d e_a = Eigen::Vector3d::UnitX();

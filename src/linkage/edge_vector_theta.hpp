@@ -1,6 +1,6 @@
-// The seed's closed forms (sections 4.1 and 4.2) for the derivatives of a
-// terminal edge's material angle theta^j with respect to the edge vectors
-// e_A, e_B of an edge-vector joint (joint.hpp), in global coordinates.
+// The closed forms of docs/model.md section 7.4 for the derivatives of a terminal edge's material
+// angle theta^j with respect to the edge vectors e_A, e_B of an edge-vector joint (joint.hpp), in
+// global coordinates.
 //
 // Terminal edge j lies on rod X (A or B) with orientation s_jX = +/-1: its
 // edge vector is s_jX e_X, its unit tangent t^j = s_jX e_X / |e_X|. Its
@@ -14,16 +14,14 @@
 //   dtheta/de_B =  (t.e_A)/|e_A x e_B| n + s_jB (I - t_B t_B^T)/|e_B| g,
 //   g = [(d1_hat.t)(d1_ref x t_hat) + (d2_ref.t_hat) d1_hat] / (1 + t_hat.t)
 //       - (d1_hat.t)(d2_ref.t_hat) / (1 + t_hat.t)^2 t_hat + d1_hat x d1_ref,
-// (s_jX = 0 when edge j is not on rod X). The first terms turn theta with
-// the normal, the second subtract the turn of the reference frame by
-// parallel transport; g vanishes at t = t_hat.
-// Checked against forward-mode AD of Joint::terminal_edge (tests/linkage/
-// edge_vector_theta_test.cpp): the seed prints the d1 and d2 of the first
-// two terms of g without the underline that marks the reference frame; they
-// must be the REFERENCE directors (d1_ref, d2_ref), like the underlined
-// d1_ref of the last term. With the material d1, d2 there, the gradient is
-// off by 0.4 % to 77 % (relative, 40 random configurations away from
-// t = t_hat); with the reference ones it agrees to 1e-15.
+// (s_jX = 0 when edge j is not on rod X). The first terms turn theta with the normal, the second
+// subtract the turn of the reference frame by parallel transport; g vanishes at t = t_hat. Checked
+// against forward-mode AD of Joint::terminal_edge (tests/linkage/edge_vector_theta_test.cpp;
+// docs/model.md section 10.1): the seed note prints the d1 and d2 of the first two terms of g
+// without the underline that marks the reference frame; they must be the REFERENCE directors
+// (d1_ref, d2_ref), like the underlined d1_ref of the last term. With the material d1, d2 there,
+// the gradient is off by 0.4 % to 77 % (relative, 40 random configurations away from t = t_hat);
+// with the reference ones it agrees to 1e-15.
 //
 // Hessian (4.2), valid right after a source-frame update (t^j = t_hat):
 //   H_AA = -(d2 d1^T + d1 d2^T) / (2 |e_A|^2) delta_jA
@@ -67,11 +65,11 @@ struct EdgeVectorThetaHessian {
 // plane orthogonal to t (t unit).
 Eigen::Vector3d transport_turn_gradient(const Eigen::Vector3d& t, const SourceFrame& source);
 
-// Seed 4.1: (dtheta/de_A, dtheta/de_B), any configuration.
+// docs/model.md section 7.4, gradient: (dtheta/de_A, dtheta/de_B), any configuration.
 Eigen::Matrix<double, 6, 1> edge_vector_theta_gradient(const EdgeVectorThetaStencil& stencil);
 
-// Seed 4.2: valid when the source frame was set at the current tangent
-// (stencil.source.tangent = t^j); stencil.source is not read.
+// docs/model.md section 7.4, Hessian blocks: valid when the source frame was set at the current
+// tangent (stencil.source.tangent = t^j); stencil.source is not read.
 EdgeVectorThetaHessian edge_vector_theta_hessian(const EdgeVectorThetaStencil& stencil);
 
 }  // namespace xshell

@@ -1,38 +1,33 @@
-// A scissor joint, in one of two parametrizations of the seed, both with 9
-// parameters and the same map to the terminal edges of its segments.
+// A scissor joint, in one of two parametrizations (docs/model.md section 5), both with 9 parameters
+// and the same map to the terminal edges of its segments.
 //
-// JointKind::Rotation (seed section 5), with a bisector frame.
-// Parameters: position p (3), rotation vector omega (3), opening angle
-// alpha, and the lengths l_A, l_B of the two terminal edges. The joint stores
-// a reference frame R0 = [b1 b2 n0]: the bisector b1 of the two rods'
+// JointKind::Rotation (docs/model.md section 5.2), with a bisector frame. Parameters: position p
+// (3), rotation vector omega (3), opening angle alpha, and the lengths l_A, l_B of the two terminal
+// edges. The joint stores a reference frame R0 = [b1 b2 n0]: the bisector b1 of the two rods'
 // tangents, b2 = n0 x b1, and the normal n0. Then
 //   t_A = R(omega) R0 (cos(alpha/2), -sin(alpha/2), 0)
 //   t_B = R(omega) R0 (cos(alpha/2),  sin(alpha/2), 0)
 //   e_A = l_A t_A,  e_B = l_B t_B,  n = R(omega) n0,
-// so alpha is the angle from t_A to t_B about n, in (0, pi), and the two rods
-// open symmetrically about the bisector. Fixing omega ("orientation") holds
-// the bisector and the normal still while alpha stays free. After a fold
-// (R0 <- R(omega) R0, omega <- 0) the configuration is the same and omega
-// sits at 0, where rotation.hpp evaluates R exactly.
+// so alpha is the angle from t_A to t_B about n, in (0, pi), and the two rods open symmetrically
+// about the bisector. Fixing omega ("orientation") holds the bisector and the normal still while
+// alpha stays free. After a fold (R0 <- R(omega) R0, omega <- 0) the configuration is the same and
+// omega sits at 0, where rotation.hpp evaluates R exactly.
 //
-// JointKind::EdgeVectors (seed sections 3-4): the edge vectors themselves.
-// Parameters: position p (3), then e_A (3) and e_B (3), each expressed in a
-// fixed orthonormal basis of its own rod,
+// JointKind::EdgeVectors (docs/model.md section 5.4): the edge vectors themselves. Parameters:
+// position p (3), then e_A (3) and e_B (3), each expressed in a fixed orthonormal basis of its own
+// rod,
 //   e_A = B_A c_A,  B_A = [t0_A, n0 x t0_A, n0],
 //   e_B = B_B c_B,  B_B = [t0_B, n0 x t0_B, n0],
 //   n = e_A x e_B / |e_A x e_B|,
-// where the reference frame stores the columns [t0_A t0_B n0] (the rods'
-// directions and the normal when the basis was last aligned, usually at
-// construction). Component 0 of c_X is the length along t0_X, 1 the in-plane
-// and 2 the out-of-plane deviation. A fixed orthogonal change of variables
-// from the seed's (e_A, e_B), so it changes neither the energy landscape nor
-// the solutions; it makes the seed's constrained joint (fixed directions,
-// free lengths) a matter of fixing c_A[1..2] and c_B[1..2] at 0 right after
-// align_reference_frame() (statics_problem.hpp does so for a support
-// "orientation"). There is no rotation to fold: fold() does nothing. The
-// normal is ill-defined where e_A and e_B are parallel: configurations with
-// |e_A x e_B| < sin(kMinEdgeVectorAngleDegrees) |e_A| |e_B| are refused
-// (check_params).
+// where the reference frame stores the columns [t0_A t0_B n0] (the rods' directions and the normal
+// when the basis was last aligned, usually at construction). Component 0 of c_X is the length along
+// t0_X, 1 the in-plane and 2 the out-of-plane deviation. A fixed orthogonal change of variables
+// from global edge vectors (e_A, e_B), so it changes neither the energy landscape nor the
+// solutions; it makes the constrained joint (docs/model.md section 8.1: fixed directions, free
+// lengths) a matter of fixing c_A[1..2] and c_B[1..2] at 0 right after align_reference_frame()
+// (statics_problem.hpp does so for a support "orientation"). There is no rotation to fold: fold()
+// does nothing. The normal is ill-defined where e_A and e_B are parallel: configurations with |e_A
+// x e_B| < sin(kMinEdgeVectorAngleDegrees) |e_A| |e_B| are refused (check_params).
 //
 // Either way, the joint sets the terminal edge of every incident segment:
 // the edge sign * e_X is centred on p (nodes p -/+ sign * e_X / 2), and its

@@ -4,7 +4,7 @@
 //
 // Per segment s, with v its full variables (rod nodes and thetas) and r_s
 // its local unknowns (its free ones, then the 9 parameters of the joint at
-// each end), the chain rule of seed section 4.2 is
+// each end), the chain rule of docs/model.md section 7.1 is
 //   g_s = J^T dE/dv,  H_s = J^T (d2E/dv2) J + sum_k (dE/dv_k) d2v_k/dr_s^2,
 // where J is the identity on free variables and a 7 x 9 joint Jacobian on
 // each joint's terminal edge (two nodes and a theta). The rod Hessian is a

@@ -1,4 +1,4 @@
-// A rod linkage (seed sections 1-5): every graph edge is a segment, a
+// A rod linkage (docs/model.md sections 2-7): every graph edge is a segment, a
 // discrete elastic rod of n_s edges; the joints (valence 2-4 vertices) glue
 // segments into full rods and pin two rods together (joint.hpp).
 //
@@ -24,16 +24,17 @@
 //    curvature and twist), rest lengths from the input, as laths cut straight
 //    from stock; the flat assembly then stores bending.
 //
-// Reduced unknowns, in this order (seed section 3):
+// Reduced unknowns, in this order (docs/model.md section 6.1):
 //   for each segment in edge order: its free nodes (x, y, z of the first,
 //     then the next, ...: all nodes but the two of a terminal edge at a
 //     joint), then its free thetas (all but a joint's terminal edge);
 //   then for each joint in vertex order its 9 parameters: p (3), omega (3),
-//     alpha, l_A, l_B for rotation joints, p (3), e_A (3), e_B (3) for
-//     edge-vector joints (LinkageOptions::joint_kind, joint.hpp).
-// Energy = sum of the segments' energies; its gradient and Hessian follow by
-// the chain rule through the joints, including the second-derivative terms
-// of the joint-controlled node positions and thetas (seed 4.2 and 5).
+//     alpha, l_A, l_B for rotation joints, p (3), c_A (3), c_B (3) (the edge
+//     vectors in fixed per-rod bases) for edge-vector joints (LinkageOptions::joint_kind,
+//     joint.hpp).
+// Energy = sum of the segments' energies; its gradient and Hessian follow by the chain rule through
+// the joints, including the second-derivative terms of the joint-controlled node positions and
+// thetas (docs/model.md sections 7.1-7.5).
 #pragma once
 
 #include <Eigen/Core>

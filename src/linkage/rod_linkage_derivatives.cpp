@@ -1,5 +1,5 @@
 // Gradient and Hessian of the linkage energy with respect to the reduced
-// unknowns, by the chain rule through the joints (seed section 4.2):
+// unknowns, by the chain rule through the joints (docs/model.md section 7.1):
 //   dE/dr = J^T dE/dv,
 //   d2E/dr2 = J^T (d2E/dv2) J + sum_k (dE/dv_k) d2v_k/dr2,
 // where v are a segment's full variables (rod nodes and thetas) and J = dv/dr.

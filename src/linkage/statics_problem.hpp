@@ -1,21 +1,18 @@
 // A statics problem on a rod linkage: which unknowns supports hold fixed,
 // which dead loads act, and the free unknowns the solvers move.
 //
-// Supports act on graph vertices. At a joint: "position" fixes p (or one
-// component for a roller). Rotation joints: "orientation" fixes omega (the
-// joint's bisector frame and normal; the opening angle stays free),
-// "opening_angle" fixes alpha. Edge-vector joints: "orientation" makes the
-// joint the seed's constrained joint (section 3): the joint is re-expressed
-// around its current directions (Joint::align_reference_frame, c_X =
-// (l_X, 0, 0)) and the deviations c_A[1..2], c_B[1..2] are fixed, so both
-// directions (hence also the normal and the opening angle) are held and
-// only the two lengths stay free; "opening_angle" is refused (no such
-// unknown). At a free rod end: "position" fixes the end node (or components),
-// "orientation" clamps the end: it also fixes the next node and the end
-// edge's theta (direction, length and twist of the end edge). Without any
-// support, the joint nearest the bounding-box centre (ties: lowest index) has
-// its position and orientation fixed, which removes exactly the rigid
-// motions (for an edge-vector joint, also that joint's opening).
+// Supports act on graph vertices. At a joint: "position" fixes p (or one component for a roller).
+// Rotation joints: "orientation" fixes omega (the joint's bisector frame and normal; the opening
+// angle stays free), "opening_angle" fixes alpha. Edge-vector joints: "orientation" makes the joint
+// the constrained joint of docs/model.md section 8.1: the joint is re-expressed around its current
+// directions (Joint::align_reference_frame, c_X = (l_X, 0, 0)) and the deviations c_A[1..2],
+// c_B[1..2] are fixed, so both directions (hence also the normal and the opening angle) are held
+// and only the two lengths stay free; "opening_angle" is refused (no such unknown). At a free rod
+// end: "position" fixes the end node (or components), "orientation" clamps the end: it also fixes
+// the next node and the end edge's theta (direction, length and twist of the end edge). Without any
+// support, the joint nearest the bounding-box centre (ties: lowest index) has its position and
+// orientation fixed, which removes exactly the rigid motions (for an edge-vector joint, also that
+// joint's opening).
 //
 // Loads: gravity g acts on lumped node masses (density x area x the node's
 // share of rest length, terminal edges at joints counted half by each of

@@ -157,7 +157,7 @@ void LinkageProblem::fix_at_joint(int j, SupportDof dof, int vertex) {
   const RodLinkage& l = linkage_;
   const int o = l.joint_dof_offset(j);
   if (l.joint(j).kind() == JointKind::EdgeVectors && dof == SupportDof::Orientation) {
-    // The seed's constrained joint: directions fixed, lengths free.
+    // The constrained joint (docs/model.md section 8.1): directions fixed, lengths free.
     linkage_.align_joint(j);
     for (int base : {kEdgeA, kEdgeB})
       for (int c = 1; c < 3; ++c) fix(o + base + c);

@@ -1,7 +1,7 @@
 // Which rods pass through which joints, and how each joint is oriented.
 //
 // Segments (graph edges) are glued into full rods at joints by the
-// straightest path in the input (seed section 2): at a valence-4 vertex the
+// straightest path in the input (docs/model.md section 2.2): at a valence-4 vertex the
 // pair of segments whose directions are closest to opposite forms one rod,
 // the other two the second rod; at valence 3 the straightest pair passes
 // through and the third segment's rod ends there; at valence 2 two rod ends
