@@ -77,22 +77,25 @@ struct IdaIntegrator {
     if (!ida) throw std::bad_alloc();
     void* m = ida.get();
     check_sundials(IDAInit(m, &DynamicsSystem::residual, 0.0, y.get(), yp.get()), "IDAInit");
-    check_sundials(IDASVtolerances(m, options.relative_tolerance, atol.get()), "IDASVtolerances");
+    check_sundials(IDASVtolerances(m, options.error_control.relative_tolerance, atol.get()),
+                   "IDASVtolerances");
     check_sundials(IDASetUserData(m, &system), "IDASetUserData");
     check_sundials(IDASetErrHandlerFn(m, keep_sundials_message, &last_message),
                    "IDASetErrHandlerFn");
-    check_sundials(IDASetMaxNumSteps(m, std::max(options.max_steps, 500L)), "IDASetMaxNumSteps");
+    check_sundials(IDASetMaxNumSteps(m, std::max(options.stopping.max_steps, 500L)),
+                   "IDASetMaxNumSteps");
     check_sundials(IDASetLinearSolver(m, linear_solver.get(), placeholder.get()),
                    "IDASetLinearSolver");
     check_sundials(IDASetJacFn(m, &DynamicsSystem::jacobian), "IDASetJacFn");
-    if (options.initial_step > 0.0)
-      check_sundials(IDASetInitStep(m, options.initial_step), "IDASetInitStep");
+    if (options.start.initial_step > 0.0)
+      check_sundials(IDASetInitStep(m, options.start.initial_step), "IDASetInitStep");
     // The gradient flow at BDF orders 3-5 (not A-stable) let the energy rise
     // by 1e-6 of its drop while a column buckled; orders 1-2 do not.
-    const int order = system.form() == DynamicsForm::FirstOrder ? std::min(2, options.max_order)
-                                                                : options.max_order;
+    const int order = system.form() == DynamicsForm::FirstOrder
+                          ? std::min(2, options.steps.max_order)
+                          : options.steps.max_order;
     check_sundials(IDASetMaxOrd(m, order), "IDASetMaxOrd");
-    if (options.suppress_velocity && size > system.unknowns()) {
+    if (options.error_control.suppress_velocity && size > system.unknowns()) {
       id = make_serial_vector(size, context);
       Eigen::Map<Eigen::VectorXd> ids = as_eigen(id.get());
       ids.head(system.unknowns()).setOnes();
@@ -100,7 +103,7 @@ struct IdaIntegrator {
       check_sundials(IDASetId(m, id.get()), "IDASetId");
       check_sundials(IDASetSuppressAlg(m, SUNTRUE), "IDASetSuppressAlg");
     }
-    check_sundials(IDASetEtaMax(m, options.eta_max), "IDASetEtaMax");
+    check_sundials(IDASetEtaMax(m, options.steps.eta_max), "IDASetEtaMax");
   }
 };
 
@@ -218,14 +221,14 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
   Eigen::VectorXd y(system.size());
   y.head(n) = objective.get();
   if (second_order) y.tail(n).setZero();
-  const bool slow_start = second_order && options.start == DynamicsStart::SlowManifold;
+  const bool slow_start = second_order && options.start.velocity == DynamicsStart::SlowManifold;
   Eigen::VectorXd weights = objective.gradient_weights();
   const Eigen::VectorXd scales =
-      options.scaled_tolerances ? unknown_scales(weights) : Eigen::VectorXd::Ones(n);
-  double relative_tolerance = options.relative_tolerance, tolerance_scale = 1.0;
+      options.error_control.scaled_tolerances ? unknown_scales(weights) : Eigen::VectorXd::Ones(n);
+  double relative_tolerance = options.error_control.relative_tolerance, tolerance_scale = 1.0;
   auto absolute_tolerances = [&] {
     Eigen::VectorXd atol(system.size());
-    atol.head(n) = tolerance_scale * options.absolute_tolerance * scales;
+    atol.head(n) = tolerance_scale * options.error_control.absolute_tolerance * scales;
     if (second_order) atol.tail(n) = atol.head(n) * system.damping().rate;
     return atol;
   };
@@ -237,14 +240,14 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
     return second_order ? 0.5 * state.tail(n).dot(mass.cwiseProduct(state.tail(n))) : 0.0;
   };
   const bool moving = std::isfinite(report.energy) && std::isfinite(report.gradient_measure) &&
-                      report.gradient_measure > options.gradient_tolerance;
+                      report.gradient_measure > options.stopping.gradient_tolerance;
   // From an indefinite Hessian (choice.unstable) the slow manifold does not
   // attract along the unstable modes, and -C^-1 grad E is large along the
   // nearly undamped ones: such starts stay at rest.
   bool on_slow_manifold = false;
   if (slow_start && moving && !choice.unstable && !choice.zero_mode) {
     const double inertia =
-        options.start_time > 0.0 ? system.damping().rate / options.start_time : 0.0;
+        options.start.time > 0.0 ? system.damping().rate / options.start.time : 0.0;
     try {
       Eigen::VectorXd v = system.overdamped_velocity(0.0, inertia);
       // The overdamped velocity is the linear model's at the start. Along a
@@ -255,7 +258,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       // The velocity is scaled down to move at most start_reach (in units
       // of unknown_scales) in one time constant.
       const double reach = v.cwiseQuotient(scales).cwiseAbs().maxCoeff() / system.damping().rate;
-      if (reach > options.start_reach) v *= options.start_reach / reach;
+      if (reach > options.start.reach) v *= options.start.reach / reach;
       if (v.allFinite()) {
         y.tail(n) = v;
         on_slow_manifold = true;
@@ -273,20 +276,20 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
 
   if (!std::isfinite(report.energy) || !std::isfinite(report.gradient_measure)) {
     finish(DynamicsStatus::NonFinite, "energy or gradient not finite at the start");
-  } else if (report.gradient_measure <= options.gradient_tolerance) {
+  } else if (report.gradient_measure <= options.stopping.gradient_tolerance) {
     finish(DynamicsStatus::Converged, "in equilibrium at the start");
   } else {
     const Eigen::VectorXd yp0 = system.consistent_derivatives(y, 0.0);
     IdaIntegrator integrator(system, options, y, yp0, absolute_tolerances());
-    const bool q_only = second_order && options.suppress_velocity;
-    if (options.initial_step <= 0.0) {
+    const bool q_only = second_order && options.error_control.suppress_velocity;
+    if (options.start.initial_step <= 0.0) {
       // IDA's own first step is h = 0.5 / |y'|_WRMS (its rule for a distant
       // output time), which sees nothing of a start at rest when the
       // velocities are out of the error test; on the slow manifold, it is
       // sized for a fast layer that this start does not have: begin
       // start_step times longer.
       double h0 = first_step(y, yp0, absolute_tolerances(), relative_tolerance, n, q_only);
-      if (on_slow_manifold && options.start_step > 1.0) h0 *= options.start_step;
+      if (on_slow_manifold && options.start.step_factor > 1.0) h0 *= options.start.step_factor;
       if (h0 > 0.0) check_sundials(IDASetInitStep(integrator.ida.get(), h0), "IDASetInitStep");
     }
     auto accumulate_stats = [&] {
@@ -302,7 +305,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
     // Rayleigh damping from the Hessian at the current configuration.
     auto refreshed_damping = [&]() {
       const Eigen::SparseMatrix<double>& H = objective.hessian();
-      if (options.refresh_damping >= 2) {
+      if (options.refresh.at_rebase >= 2) {
         const ModeEstimate warm = choice.modes;
         choice = choose_damping(options, estimator, H, mass, &warm);
         result.damping = choice.c;
@@ -374,8 +377,8 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
     // then waits for steps endgame_growth times longer, or a gradient
     // endgame_growth times smaller, before the next (both triggers back off).
     double endgame_backoff = 1.0;
-    const bool endgame_on = options.endgame_steps > 0.0;
-    if (options.cap_indefinite_steps)
+    const bool endgame_on = options.endgame.step_length > 0.0;
+    if (options.steps.cap_indefinite)
       system.on_indefinite([&step_cap, &integrator](double cj) {
         IDASetMaxStep(integrator.ida.get(), step_cap.on_failure(cj));
       });
@@ -385,7 +388,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
           finish(DynamicsStatus::Interrupted, "stop flag raised");
           break;
         }
-        if (result.steps >= options.max_steps) {
+        if (result.steps >= options.stopping.max_steps) {
           finish(DynamicsStatus::MaxSteps,
                  "no convergence in " + std::to_string(result.steps) + " steps");
           break;
@@ -406,7 +409,8 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
           // IDA gave up late in a run whose motion had died out (error tests
           // at the round-off floor of the residual): the end game can still
           // finish it from the last accepted state if that is a stable basin.
-          if (endgame_on && t * system.damping().rate >= options.endgame_steps * endgame_backoff &&
+          if (endgame_on &&
+              t * system.damping().rate >= options.endgame.step_length * endgame_backoff &&
               kinetic(y) <=
                   1e-6 * std::max(std::abs(energy0 - report.energy), std::abs(report.energy))) {
             evaluator.move_to(y.head(n));
@@ -441,9 +445,10 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         report.kinetic_energy = kinetic(y);
         report.gradient_measure = weighted_max_norm(weights, evaluator.gradient());
         const double total = report.energy + report.kinetic_energy;
-        if (options.dissipation_guard > 0.0 && std::isfinite(total) &&
-            total - last_total > options.dissipation_guard * std::max(total0 - last_total, 0.0) +
-                                     1e-12 * std::abs(report.energy)) {
+        if (options.steps.dissipation_guard > 0.0 && std::isfinite(total) &&
+            total - last_total >
+                options.steps.dissipation_guard * std::max(total0 - last_total, 0.0) +
+                    1e-12 * std::abs(report.energy)) {
           // E + K rose: the step is taken again (see DynamicsOptions).
           --result.steps;
           if (!retry_shorter(h, "E + K rises")) break;
@@ -471,7 +476,8 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         // Hessian is positive definite (a stable basin, not a saddle). The
         // check factorizes with the estimator's solver: IDA goes on with its
         // factorization of K when the Hessian is indefinite.
-        if (endgame_on && h * system.damping().rate >= options.endgame_steps * endgame_backoff &&
+        if (endgame_on &&
+            h * system.damping().rate >= options.endgame.step_length * endgame_backoff &&
             is_positive_definite(estimator, objective.hessian())) {
           last_good = y;
           endgame = true;
@@ -482,33 +488,34 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         last_total = total;
         const double energy_scale =
             std::max(std::abs(energy0 - report.energy), std::abs(report.energy));
-        const bool at_rest = report.kinetic_energy <= options.kinetic_tolerance * energy_scale;
-        if (report.gradient_measure <= options.gradient_tolerance && at_rest) {
+        const bool at_rest =
+            report.kinetic_energy <= options.stopping.kinetic_tolerance * energy_scale;
+        if (report.gradient_measure <= options.stopping.gradient_tolerance && at_rest) {
           finish(DynamicsStatus::Converged, "gradient and kinetic energy below tolerance");
           break;
         }
         // Settled near an equilibrium (see endgame_gradient_factor).
-        if (endgame_on && options.endgame_gradient_factor > 0.0 && at_rest &&
-            report.gradient_measure <=
-                options.endgame_gradient_factor / endgame_backoff * options.gradient_tolerance) {
+        if (endgame_on && options.endgame.gradient_factor > 0.0 && at_rest &&
+            report.gradient_measure <= options.endgame.gradient_factor / endgame_backoff *
+                                           options.stopping.gradient_tolerance) {
           endgame = true;
           break;
         }
         const bool blending = system.update_blend(t);
-        if (!blending && options.refresh_distance > 0.0 &&
-            options.damping_model == DampingModel::Rayleigh &&
+        if (!blending && options.refresh.distance > 0.0 &&
+            options.damping.model == DampingModel::Rayleigh &&
             (y.head(n) - refreshed_at).cwiseQuotient(scales).cwiseAbs().maxCoeff() >
-                options.refresh_distance) {
+                options.refresh.distance) {
           // Stiffness-proportional damping from the Hessian here, blended in.
           refreshed_at = y.head(n);
-          system.blend_damping(refreshed_damping(), t, options.blend_steps * h);
+          system.blend_damping(refreshed_damping(), t, options.refresh.blend_steps * h);
           ++result.refreshes;
         }
-        const bool far = options.rebase_distance > 0.0 &&
+        const bool far = options.rebase.distance > 0.0 &&
                          ((y.head(n) - rebased_at).cwiseQuotient(scales).cwiseAbs().maxCoeff() >
-                          options.rebase_distance);
+                          options.rebase.distance);
         const bool due =
-            options.rebase_interval > 0 && result.steps - last_rebase >= options.rebase_interval;
+            options.rebase.interval > 0 && result.steps - last_rebase >= options.rebase.interval;
         if (far || due) {
           last_rebase = result.steps;
           Eigen::VectorXd v = second_order ? Eigen::VectorXd(y.tail(n)) : Eigen::VectorXd();
@@ -524,23 +531,24 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
           last_good = y;
           last_total = report.energy + kinetic(y);  // v re-expressed
           bool restart = !(y == before);
-          if (options.refresh_damping > 0 && options.damping_model == DampingModel::Rayleigh) {
+          if (options.refresh.at_rebase > 0 && options.damping.model == DampingModel::Rayleigh) {
             system.set_damping(refreshed_damping());
             restart = true;
-          } else if (options.refresh_damping > 0 && choice.unstable) {
+          } else if (options.refresh.at_rebase > 0 && choice.unstable) {
             choice = choose_damping(options, estimator, objective.hessian(), mass);
             system.set_damping(choice.damping);
             restart = true;
           }
           if (!restart) continue;  // nothing was re-expressed: no restart needed
-          restart_at(t, options.restart_step > 0 ? h * options.restart_step : 0.0);
+          restart_at(t, options.rebase.restart_step > 0 ? h * options.rebase.restart_step : 0.0);
         }
       }
       // Leave the objective at the last accepted state.
       evaluator.move_to(y.head(n));
       if (!endgame) break;
-      const int max_iterations = static_cast<int>(std::min<long>(
-          options.endgame_iterations, std::max<long>(1, options.max_steps - result.steps)));
+      const int max_iterations = static_cast<int>(
+          std::min<long>(options.endgame.iterations,
+                         std::max<long>(1, options.stopping.max_steps - result.steps)));
       if (second_order) y.tail(n).setZero();  // the infinite step ends at rest
       const NewtonResult polished =
           run_endgame(objective, options, max_iterations, callbacks, result.steps, report);
@@ -550,15 +558,15 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       evaluator.sync();
       y.head(n) = objective.get();
       weights = objective.gradient_weights();
-      if (polished.status == NewtonStatus::MaxIterations && result.steps < options.max_steps &&
-          options.endgame_growth > 1.0) {
+      if (polished.status == NewtonStatus::MaxIterations &&
+          result.steps < options.stopping.max_steps && options.endgame.growth > 1.0) {
         // Handed over too early (far from the equilibrium, in a region
         // where H happens to be positive definite): the dynamics go on at
         // rest from where the end game stopped, its energy lower than at
         // the hand-over (the line search only lowers it).
         ++result.endgame_fallbacks;
         endgame = false;
-        endgame_backoff *= options.endgame_growth;
+        endgame_backoff *= options.endgame.growth;
         last_good = y;
         last_good_t = t;
         last_total = polished.energy;
