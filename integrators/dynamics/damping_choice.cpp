@@ -6,26 +6,36 @@
 
 namespace xshell {
 
+namespace {
+
+// C = c M: c as given, or critical damping of the slowest mode.
+DampingChoice mass_proportional_damping(const DynamicsOptions& options, CholeskySolver& solver,
+                                        const Eigen::SparseMatrix<double>& H,
+                                        const Eigen::VectorXd& mass) {
+  DampingChoice choice;
+  double c = options.damping.coefficient;
+  if (!(c > 0.0)) {
+    const LowestMode mode =
+        estimate_lowest_mode(solver, H, mass, options.damping.iterations, options.shift);
+    choice.factorizations = mode.factorizations;
+    choice.unstable = mode.shifted;
+    c = automatic_damping(mode, H, mass);
+  }
+  choice.c = c;
+  choice.damping.mass_coefficient = c;
+  choice.damping.rate = 0.5 * c;
+  return choice;
+}
+
+}  // namespace
+
 DampingChoice choose_damping(const DynamicsOptions& options, CholeskySolver& solver,
                              const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
                              const ModeEstimate* warm) {
-  DampingChoice choice;
-  const bool rayleigh = options.damping.model == DampingModel::Rayleigh;
-  if (!rayleigh) {
-    double c = options.damping.coefficient;
-    if (!(c > 0.0)) {
-      const LowestMode mode =
-          estimate_lowest_mode(solver, H, mass, options.damping.iterations, options.shift);
-      choice.factorizations = mode.factorizations;
-      choice.unstable = mode.shifted;
-      c = automatic_damping(mode, H, mass);
-    }
-    choice.c = c;
-    choice.damping.mass_coefficient = c;
-    choice.damping.rate = 0.5 * c;
-    return choice;
-  }
+  if (options.damping.model != DampingModel::Rayleigh)
+    return mass_proportional_damping(options, solver, H, mass);
   // Rayleigh: C = b (H + mu M).
+  DampingChoice choice;
   double trace = 0.0;
   for (Eigen::Index i = 0; i < H.rows(); ++i) trace += std::abs(H.coeff(i, i));
   const double floor =
