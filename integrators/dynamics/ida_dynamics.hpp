@@ -98,7 +98,7 @@ struct DampingOptions {
   DampingModel model = DampingModel::Rayleigh;
   // c of C = c M; Rayleigh: critical damping at eigenvalue c^2 / 4 (1 / time); <= 0: automatic.
   double coefficient = 0.0;
-  // Inverse iterations per estimated eigenvalue.
+  // Inverse iterations per estimated eigenvalue (at most: an iteration that converged stops).
   int iterations = 20;
   // Eigenvalues below mode_floor trace(H) / trace(M) count as zero (dimensionless).
   double mode_floor = 1e-12;
