@@ -44,11 +44,11 @@ DeploymentOptions deployment_options(const Config& config) {
                              : LineSearch::KinsolWithEnergyFallback;
   o.dynamics.form = s.first_order ? DynamicsForm::FirstOrder : DynamicsForm::SecondOrder;
   o.dynamics.mass = s.mass == MassSetting::Fictitious ? MassModel::Fictitious : MassModel::Physical;
-  o.dynamics.start =
+  o.dynamics.start.velocity =
       s.start == StartSetting::Rest ? DynamicsStart::Rest : DynamicsStart::SlowManifold;
-  o.dynamics.damping = s.damping.value_or(0.0);
-  o.dynamics.gradient_tolerance = s.gradient_tolerance;
-  o.dynamics.max_steps = s.step_limit();
+  o.dynamics.damping.coefficient = s.damping.value_or(0.0);
+  o.dynamics.stopping.gradient_tolerance = s.gradient_tolerance;
+  o.dynamics.stopping.max_steps = s.step_limit();
   return o;
 }
 

@@ -333,11 +333,12 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
     options.form = config.solver.first_order ? DynamicsForm::FirstOrder : DynamicsForm::SecondOrder;
     options.mass =
         config.solver.mass == MassSetting::Fictitious ? MassModel::Fictitious : MassModel::Physical;
-    options.start = config.solver.start == StartSetting::Rest ? DynamicsStart::Rest
-                                                              : DynamicsStart::SlowManifold;
-    options.damping = config.solver.damping.value_or(0.0);
-    options.gradient_tolerance = config.solver.gradient_tolerance;
-    options.max_steps = config.solver.step_limit();
+    options.start.velocity = config.solver.start == StartSetting::Rest
+                                 ? DynamicsStart::Rest
+                                 : DynamicsStart::SlowManifold;
+    options.damping.coefficient = config.solver.damping.value_or(0.0);
+    options.stopping.gradient_tolerance = config.solver.gradient_tolerance;
+    options.stopping.max_steps = config.solver.step_limit();
     DynamicsCallbacks callbacks;
     callbacks.stop = &halt;
     callbacks.on_step = [&](const DynamicsReport& r) {

@@ -177,8 +177,8 @@ void run_other_solvers(const BenchCase& c, const BenchSettings& settings, BenchR
     LinkageProblem problem = make_problem(c);
     LinkageObjective objective(problem);
     DynamicsOptions options;
-    options.gradient_tolerance = 1e-6;
-    options.max_steps = 20000;
+    options.stopping.gradient_tolerance = 1e-6;
+    options.stopping.max_steps = 20000;
     const DynamicsResult result = solve_dynamics(objective, options);
     r.dynamics_steps = result.steps;
     dynamics_s.push_back(result.seconds);

@@ -6,32 +6,42 @@
 
 namespace xshell {
 
+namespace {
+
+// C = c M: c as given, or critical damping of the slowest mode.
+DampingChoice mass_proportional_damping(const DynamicsOptions& options, CholeskySolver& solver,
+                                        const Eigen::SparseMatrix<double>& H,
+                                        const Eigen::VectorXd& mass) {
+  DampingChoice choice;
+  double c = options.damping.coefficient;
+  if (!(c > 0.0)) {
+    const LowestMode mode =
+        estimate_lowest_mode(solver, H, mass, options.damping.iterations, options.shift);
+    choice.factorizations = mode.factorizations;
+    choice.unstable = mode.shifted;
+    c = automatic_damping(mode, H, mass);
+  }
+  choice.c = c;
+  choice.damping.mass_coefficient = c;
+  choice.damping.rate = 0.5 * c;
+  return choice;
+}
+
+}  // namespace
+
 DampingChoice choose_damping(const DynamicsOptions& options, CholeskySolver& solver,
                              const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
                              const ModeEstimate* warm) {
-  DampingChoice choice;
-  const bool rayleigh = options.damping_model == DampingModel::Rayleigh;
-  if (!rayleigh) {
-    double c = options.damping;
-    if (!(c > 0.0)) {
-      const LowestMode mode =
-          estimate_lowest_mode(solver, H, mass, options.damping_iterations, options.shift);
-      choice.factorizations = mode.factorizations;
-      choice.unstable = mode.shifted;
-      c = automatic_damping(mode, H, mass);
-    }
-    choice.c = c;
-    choice.damping.mass_coefficient = c;
-    choice.damping.rate = 0.5 * c;
-    return choice;
-  }
+  if (options.damping.model != DampingModel::Rayleigh)
+    return mass_proportional_damping(options, solver, H, mass);
   // Rayleigh: C = b (H + mu M).
+  DampingChoice choice;
   double trace = 0.0;
   for (Eigen::Index i = 0; i < H.rows(); ++i) trace += std::abs(H.coeff(i, i));
   const double floor =
-      std::max(options.mode_floor * trace / mass.sum(), std::numeric_limits<double>::min());
+      std::max(options.damping.mode_floor * trace / mass.sum(), std::numeric_limits<double>::min());
   choice.modes =
-      estimate_modes(solver, H, mass, options.damping_iterations, options.shift, 4, warm, floor);
+      estimate_modes(solver, H, mass, options.damping.iterations, options.shift, 4, warm, floor);
   const ModeEstimate& m = choice.modes;
   choice.factorizations = m.lowest.factorizations;
   double mu = 0.0, b = 0.0, omega = 0.0;
@@ -61,8 +71,9 @@ DampingChoice choose_damping(const DynamicsOptions& options, CholeskySolver& sol
     // still gets damping C x = b mu M x: mu is at least a fraction of the
     // lowest stable eigenvalue, or the mode would move without bound.
     mu = std::max(
-        (options.form == DynamicsForm::SecondOrder ? options.unstable_margin : 2.0) * negative,
-        options.zero_mode_fraction * lambda);
+        (options.form == DynamicsForm::SecondOrder ? options.damping.unstable_margin : 2.0) *
+            negative,
+        options.damping.zero_mode_fraction * lambda);
     const Eigen::VectorXd shift = mu * mass;
     ++choice.factorizations;
     if (solver.factorize(H, &shift) != FactorizationStatus::PositiveDefinite)
@@ -70,8 +81,8 @@ DampingChoice choose_damping(const DynamicsOptions& options, CholeskySolver& sol
     omega = std::sqrt(lambda);
     b = 2.0 * omega / (lambda + mu);
   }
-  if (options.damping > 0.0) {  // a given c: critical damping at lambda = c^2 / 4
-    omega = 0.5 * options.damping;
+  if (options.damping.coefficient > 0.0) {  // a given c: critical damping at lambda = c^2 / 4
+    omega = 0.5 * options.damping.coefficient;
     b = 1.0 / omega;
     mu = std::max(mu, omega * omega);
   }

@@ -6,7 +6,7 @@ NewtonResult run_endgame(Objective& objective, const DynamicsOptions& options, i
                          const DynamicsCallbacks& callbacks, long steps_before,
                          DynamicsReport& report) {
   NewtonOptions newton;
-  newton.gradient_tolerance = options.gradient_tolerance;
+  newton.gradient_tolerance = options.stopping.gradient_tolerance;
   newton.max_iterations = max_iterations;
   newton.shift = options.shift;
   NewtonCallbacks forward;

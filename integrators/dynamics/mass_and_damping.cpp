@@ -70,6 +70,87 @@ void refine_above(LowestMode& m, const std::vector<Eigen::VectorXd>& found,
 
 }  // namespace
 
+namespace {
+
+// Inverse iteration x <- (H + s M)^-1 M x with the factorization of
+// H + s M in `solver`, each iterate M-orthogonal to the unstable modes
+// found so far. Starts from a given vector or a pseudo-random one, from one
+// generator for all the modes of an estimate.
+class DeflatedInverseIteration {
+ public:
+  DeflatedInverseIteration(CholeskySolver& solver, const Eigen::SparseMatrix<double>& H,
+                           const Eigen::VectorXd& mass, int iterations, double shift,
+                           double zero_floor, double converged_change)
+      : solver_(solver),
+        H_(H),
+        mass_(mass),
+        iterations_(iterations),
+        shift_(shift),
+        zero_floor_(zero_floor),
+        converged_change_(converged_change) {}
+
+  // Iterates into m (eigenvalue x'Hx, ok, vector; counts its iterations).
+  // below_floor: stop as soon as the mode is known to be at or below
+  // zero_floor. 1 / theta - s bounds the lowest eigenvalue of the deflated
+  // problem from above, so once it is at or below the floor another unstable
+  // or zero mode exists, and its exact value is not needed: only the lowest
+  // mode's value and the lowest stable one's enter the damping. In a cluster
+  // of zero modes (a linkage without supports: its rigid motions) the
+  // iterations converge slowly, and the largest design spent 72 of 91 solves
+  // on four such modes.
+  void run(LowestMode& m, const Eigen::VectorXd* start, bool below_floor) {
+    Eigen::VectorXd x(H_.rows());
+    if (start != nullptr && start->size() == x.size()) {
+      x = *start;
+    } else {
+      for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = uniform_(rng_);
+    }
+    project(x);
+    double theta_before = 0.0;
+    for (int k = 0; k < iterations_; ++k) {
+      Eigen::VectorXd y = solver_.solve(Eigen::VectorXd(mass_.cwiseProduct(x)));
+      // theta = x'M (H + sM)^-1 M x, the Rayleigh quotient of the iteration's
+      // operator (1 / (lambda + s) at an eigenvector), from the solve made.
+      const double theta = m_dot(x, y);
+      x = std::move(y);
+      project(x);
+      ++m.iterations;
+      if (k > 0 && std::abs(theta - theta_before) < converged_change_ * std::abs(theta)) break;
+      if (below_floor && k > 0 && 1.0 / theta - shift_ <= zero_floor_ &&
+          std::abs(theta - theta_before) < 1e-2 * std::abs(theta))
+        break;
+      theta_before = theta;
+    }
+    m.eigenvalue = x.dot(H_ * x);
+    m.ok = std::isfinite(m.eigenvalue);
+    m.vector = std::move(x);
+  }
+
+  std::vector<Eigen::VectorXd> found;  // unstable modes, M-orthonormal
+
+ private:
+  double m_dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const {
+    return a.dot(mass_.cwiseProduct(b));
+  }
+  // y M-orthogonal to the modes found, M-normalized.
+  void project(Eigen::VectorXd& y) const {
+    for (const Eigen::VectorXd& u : found) y -= m_dot(u, y) * u;
+    y /= std::sqrt(m_dot(y, y));
+  }
+
+  CholeskySolver& solver_;
+  const Eigen::SparseMatrix<double>& H_;
+  const Eigen::VectorXd& mass_;
+  const int iterations_;
+  const double shift_;  // s
+  const double zero_floor_;
+  const double converged_change_;
+  std::mt19937 rng_{12345};
+  std::uniform_real_distribution<double> uniform_{-1.0, 1.0};
+};
+
+}  // namespace
+
 ModeEstimate estimate_modes(CholeskySolver& solver, const Eigen::SparseMatrix<double>& H,
                             const Eigen::VectorXd& mass, int iterations, const ShiftOptions& shift,
                             int max_unstable, const ModeEstimate* warm, double zero_floor,
@@ -83,57 +164,14 @@ ModeEstimate estimate_modes(CholeskySolver& solver, const Eigen::SparseMatrix<do
   estimate.certified_shift = f.shift;
   if (f.status != FactorizationStatus::PositiveDefinite) return estimate;
 
-  auto m_dot = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-    return a.dot(mass.cwiseProduct(b));
-  };
-  std::mt19937 rng(12345);
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  std::vector<Eigen::VectorXd> found;  // unstable modes, M-orthonormal
-  // below_floor: stop as soon as the mode is known to be at or below
-  // zero_floor. 1 / theta - s bounds the lowest eigenvalue of the deflated
-  // problem from above, so once it is at or below the floor another unstable
-  // or zero mode exists, and its exact value is not needed: only the lowest
-  // mode's value and the lowest stable one's enter the damping. In a cluster
-  // of zero modes (a linkage without supports: its rigid motions) the
-  // iterations converge slowly, and the largest design spent 72 of 91 solves
-  // on four such modes.
-  auto iterate = [&](LowestMode& m, const Eigen::VectorXd* start, bool below_floor) {
-    Eigen::VectorXd x(H.rows());
-    if (start != nullptr && start->size() == x.size()) {
-      x = *start;
-    } else {
-      for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = uniform(rng);
-    }
-    auto project = [&](Eigen::VectorXd& y) {
-      for (const Eigen::VectorXd& u : found) y -= m_dot(u, y) * u;
-      y /= std::sqrt(m_dot(y, y));
-    };
-    project(x);
-    double theta_before = 0.0;
-    for (int k = 0; k < iterations; ++k) {
-      Eigen::VectorXd y = solver.solve(Eigen::VectorXd(mass.cwiseProduct(x)));
-      // theta = x'M (H + sM)^-1 M x, the Rayleigh quotient of the iteration's
-      // operator (1 / (lambda + s) at an eigenvector), from the solve made.
-      const double theta = m_dot(x, y);
-      x = std::move(y);
-      project(x);
-      ++m.iterations;
-      if (k > 0 && std::abs(theta - theta_before) < converged_change * std::abs(theta)) break;
-      if (below_floor && k > 0 && 1.0 / theta - f.shift <= zero_floor &&
-          std::abs(theta - theta_before) < 1e-2 * std::abs(theta))
-        break;
-      theta_before = theta;
-    }
-    m.eigenvalue = x.dot(H * x);
-    m.ok = std::isfinite(m.eigenvalue);
-    m.vector = std::move(x);
-  };
-  iterate(mode, warm != nullptr && warm->lowest.ok ? &warm->lowest.vector : nullptr, false);
+  DeflatedInverseIteration iteration(solver, H, mass, iterations, f.shift, zero_floor,
+                                     converged_change);
+  iteration.run(mode, warm != nullptr && warm->lowest.ok ? &warm->lowest.vector : nullptr, false);
   if (!mode.ok || mode.eigenvalue > zero_floor) {
     estimate.stable = mode;
     return estimate;
   }
-  found.push_back(mode.vector);
+  iteration.found.push_back(mode.vector);
   estimate.unstable_modes = 1;
   const Eigen::VectorXd* start =
       warm != nullptr && warm->stable.ok ? &warm->stable.vector : nullptr;
@@ -141,15 +179,15 @@ ModeEstimate estimate_modes(CholeskySolver& solver, const Eigen::SparseMatrix<do
     LowestMode next;
     next.shifted = true;
     next.shift = f.shift;
-    iterate(next, start, true);
+    iteration.run(next, start, true);
     start = nullptr;
     if (!next.ok) break;
     if (next.eigenvalue > zero_floor) {
-      refine_above(next, found, H, mass);
+      refine_above(next, iteration.found, H, mass);
       estimate.stable = std::move(next);
       break;
     }
-    found.push_back(next.vector);
+    iteration.found.push_back(next.vector);
     ++estimate.unstable_modes;
   }
   return estimate;

@@ -68,13 +68,8 @@ enum class PeakLocation {
   // clamped to [-1/2, 1/2]; the state there on the leapfrog's segment
   // q_{n-1} -> q_n (velocity v_{n-1/2}): q* = q_n - (1/2 - tau*) dt v_{n-1/2}.
   // Barnes's point when tau* = 0 (or fewer than three samples since the reset).
-  // Measured (tests/integrators/test_kinetic_damping.cpp): on a single
-  // spring it lands 50x nearer the true peak (2e-4 vs 1e-2 of the amplitude,
-  // 28 vs 47 iterations), but on the toys it takes 2.5-4x more iterations
-  // with ~8x more resets (chain 936 vs 242, column 2154 vs 840; Rosenbrock
-  // 283 vs 332): Barnes's midpoint multiplies every mode by cos(omega_k / 2)
-  // and so filters the fastest ones, whose leftover motion otherwise makes
-  // spurious peaks soon after each reset.
+  // Nearer the true peak, but more resets than Barnes's midpoint, which
+  // filters the fastest modes (docs/tuning.md).
   Parabola,
 };
 
@@ -83,16 +78,14 @@ enum class PeakLocation {
 enum class MassBound {
   // Barnes: m_i ~ sum_j |K_ij|. Sums entries of different units where
   // positions meet angles, so the masses (and the iteration count) depend on
-  // the length unit: the 3x3 test grid under gravity takes 229 iterations in
-  // metres, 662 in millimetres.
+  // the length unit (docs/tuning.md).
   RowSum,
   // m_i ~ sum_j |K_ij| sqrt(K_ii / K_jj): Gerschgorin on the Jacobi-scaled
   // B = D^-1/2 K D^-1/2 (D = diag |K_ii|), M = D^1/2 diag(sum_j |B_ij|) D^1/2.
   // M^-1 K is similar to diag(sum_j |B_ij|)^-1 B, whose rows sum to 1 in
   // absolute value: the same bound, and invariant under any rescaling of
   // the unknowns (units), except for rows whose diagonal is below the floor
-  // of scaled_fictitious_mass. Same grid: 178 iterations in either unit
-  // (4x4 grid: 723 vs 1109/2022); on the toys within 20% of RowSum either way.
+  // of scaled_fictitious_mass.
   ScaledRowSum,
 };
 

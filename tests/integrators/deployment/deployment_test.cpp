@@ -17,12 +17,12 @@ DeploymentOptions tight(DeploymentSolver solver, double tolerance = 1e-10) {
   o.solver = solver;
   o.newton.gradient_tolerance = tolerance;
   o.newton.max_iterations = 100;
-  o.dynamics.gradient_tolerance = tolerance;
+  o.dynamics.stopping.gradient_tolerance = tolerance;
   // The overdamped flow: each step starts near the next equilibrium, and the
   // second-order form would spend thousands of steps on the stiff
   // stretching modes' oscillations.
   o.dynamics.form = DynamicsForm::FirstOrder;
-  o.dynamics.max_steps = 20000;
+  o.dynamics.stopping.max_steps = 20000;
   return o;
 }
 

@@ -46,7 +46,7 @@ DynamicsOptions tight(DynamicsForm form, MassModel mass) {
   DynamicsOptions options;
   options.form = form;
   options.mass = mass;
-  options.gradient_tolerance = 1e-10;
+  options.stopping.gradient_tolerance = 1e-10;
   return options;
 }
 
@@ -172,7 +172,7 @@ TEST_CASE("damped dynamics near the column's saddle") {
       for (bool cap : {false, true}) {
         StencilObjective column = make_column({});
         DynamicsOptions o = tight(form, MassModel::Physical);
-        o.cap_indefinite_steps = cap;
+        o.steps.cap_indefinite = cap;
         runs[cap] = run_dynamics(column, o).result;
         ends[cap] = column.get();
         INFO(label(o) << ", cap " << cap << ": " << runs[cap].reason);
@@ -196,7 +196,7 @@ TEST_CASE("damped dynamics near the column's saddle") {
     for (DynamicsForm form : {DynamicsForm::SecondOrder, DynamicsForm::FirstOrder}) {
       StencilObjective column = make_column({});
       DynamicsOptions o = tight(form, MassModel::Physical);
-      o.endgame_steps = 1.0;
+      o.endgame.step_length = 1.0;
       const DynamicsRun run = run_dynamics(column, o);
       INFO(label(o) << ": " << run.result.reason);
       REQUIRE(run.result.status == DynamicsStatus::Converged);
@@ -240,13 +240,13 @@ TEST_CASE(
     DynamicsOptions o = tight(form, MassModel::Physical);
     std::vector<DynamicsRun> runs;
     for (double factor : {0.0, 100.0}) {
-      o.endgame_gradient_factor = factor;
+      o.endgame.gradient_factor = factor;
       StencilObjective column = make_column({});
       runs.push_back(run_dynamics(column, o));
       const DynamicsRun& run = runs.back();
       INFO(label(o) << ", factor " << factor << ": " << run.result.reason);
       REQUIRE(run.result.status == DynamicsStatus::Converged);
-      CHECK(run.result.gradient_measure <= o.gradient_tolerance);
+      CHECK(run.result.gradient_measure <= o.stopping.gradient_tolerance);
       CHECK_FALSE(run.result.stable);
       CHECK((column.configuration() - reference.configuration()).norm() <=
             1e-6 * reference.configuration().norm());
@@ -259,8 +259,8 @@ TEST_CASE(
     const DynamicsReport& handover =
         reports[reports.size() - 1 - static_cast<size_t>(settled.endgame_steps)];
     CHECK(handover.order > 0);
-    CHECK(handover.gradient_measure <= 100.0 * o.gradient_tolerance);
-    CHECK(handover.gradient_measure > o.gradient_tolerance);
+    CHECK(handover.gradient_measure <= 100.0 * o.stopping.gradient_tolerance);
+    CHECK(handover.gradient_measure > o.stopping.gradient_tolerance);
     CHECK(settled.steps < plain.steps);
     MESSAGE(label(o) << ": " << plain.steps << " steps without the settled end game, "
                      << settled.steps << " with it (" << settled.endgame_steps
@@ -305,7 +305,7 @@ TEST_CASE("damped dynamics from the slow manifold: moving at the start, same equ
   for (DynamicsStart start : {DynamicsStart::Rest, DynamicsStart::SlowManifold}) {
     StencilObjective chain = make_taut_chain();
     DynamicsOptions options = tight(DynamicsForm::SecondOrder, MassModel::Physical);
-    options.start = start;
+    options.start.velocity = start;
     const DynamicsRun run = run_dynamics(chain, options);
     INFO((start == DynamicsStart::Rest ? "rest" : "slow manifold") << ": " << run.result.reason);
     REQUIRE(run.result.status == DynamicsStatus::Converged);
@@ -342,7 +342,7 @@ TEST_CASE("damped dynamics: stop flag, step limit and non-finite values") {
   SUBCASE("step limit") {
     StencilObjective chain = make_chain();
     DynamicsOptions options = tight(DynamicsForm::SecondOrder, MassModel::Physical);
-    options.max_steps = 7;
+    options.stopping.max_steps = 7;
     const DynamicsRun run = run_dynamics(chain, options);
     CHECK(run.result.status == DynamicsStatus::MaxSteps);
     CHECK(run.result.steps == 7);

@@ -83,8 +83,8 @@ NewtonOptions newton_options() {
 DynamicsOptions dynamics_options(DynamicsForm form = DynamicsForm::SecondOrder) {
   DynamicsOptions d;
   d.form = form;
-  d.gradient_tolerance = 1e-8;
-  d.max_steps = 20000;
+  d.stopping.gradient_tolerance = 1e-8;
+  d.stopping.max_steps = 20000;
   return d;
 }
 
@@ -238,7 +238,7 @@ Timed time_newton(LinkageProblem problem, double tolerance) {
 Timed time_dynamics(LinkageProblem problem, double tolerance, DynamicsForm form) {
   LinkageObjective objective(problem);
   DynamicsOptions o = dynamics_options(form);
-  o.gradient_tolerance = tolerance;
+  o.stopping.gradient_tolerance = tolerance;
   const DynamicsResult r = solve_dynamics(objective, o);
   if (!r.converged()) MESSAGE("  not converged: " << r.reason);
   return {r.converged(),
@@ -366,7 +366,7 @@ TEST_CASE("Started on the slow manifold, the second-order form skips the initial
     const bool slow = start == DynamicsStart::SlowManifold;
     CAPTURE(slow);
     DynamicsOptions o = dynamics_options();
-    o.start = start;
+    o.start.velocity = start;
     const RecordedRun run = run_recorded(setup, o);
     const DynamicsResult& d = run.result;
     const std::vector<DynamicsReport>& reports = run.reports;
@@ -407,9 +407,9 @@ TEST_CASE("An end game handed over too early gives way to the dynamics again") {
   for (double growth : {4.0, 1.0}) {
     CAPTURE(growth);
     DynamicsOptions o = dynamics_options();
-    o.endgame_steps = 1e-3;
-    o.endgame_iterations = 2;
-    o.endgame_growth = growth;
+    o.endgame.step_length = 1e-3;
+    o.endgame.iterations = 2;
+    o.endgame.growth = growth;
     const RecordedRun run = run_recorded(setup, o);
     const DynamicsResult& d = run.result;
     CAPTURE(d.reason);

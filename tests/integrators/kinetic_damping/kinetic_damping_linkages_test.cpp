@@ -208,8 +208,8 @@ void benchmark(const std::string& name, const std::function<LinkageProblem()>& m
     LinkageProblem problem = make();
     LinkageObjective objective(problem);
     DynamicsOptions options;
-    options.gradient_tolerance = tolerance;
-    options.max_steps = dynamics_steps;
+    options.stopping.gradient_tolerance = tolerance;
+    options.stopping.max_steps = dynamics_steps;
     const std::clock_t cpu = std::clock();
     const DynamicsResult r = solve_dynamics(objective, options);
     dynamics = {r.steps, r.seconds, cpu_seconds_since(cpu), r.gradient_measure, r.converged()};
