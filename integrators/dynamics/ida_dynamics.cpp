@@ -4,7 +4,6 @@
 #include <ida/ida_ls.h>
 
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
@@ -20,31 +19,7 @@
 
 namespace xshell {
 
-const char* to_string(DynamicsStatus status) {
-  switch (status) {
-    case DynamicsStatus::Converged:
-      return "converged";
-    case DynamicsStatus::MaxSteps:
-      return "maximum number of steps reached";
-    case DynamicsStatus::LinearSolverFailed:
-      return "linear solver failed";
-    case DynamicsStatus::IntegratorFailed:
-      return "integrator failed";
-    case DynamicsStatus::NonFinite:
-      return "non-finite values";
-    case DynamicsStatus::Interrupted:
-      return "interrupted";
-  }
-  return "unknown";
-}
-
 namespace {
-
-std::string scientific(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3e", value);
-  return text;
-}
 
 // A step shorter than this fraction of the simulated time means the
 // integrator is creeping towards a barrier (configurations it cannot
@@ -120,20 +95,20 @@ void classify_failure(int flag, const ObjectiveEvaluator& evaluator, const Dynam
       break;
   }
   if (nonfinite) {
-    result.status = DynamicsStatus::NonFinite;
+    result.status = SolveStatus::NonFinite;
     result.reason = name + ": " + evaluator.last_message();
   } else if (flag == IDA_LSETUP_FAIL || system.last_setup_failed()) {
-    result.status = DynamicsStatus::LinearSolverFailed;
+    result.status = SolveStatus::LinearSolverFailed;
     result.reason = name +
                     ": the implicit step's matrix K = H + c_j C + (c_j^2 + a c_j) M (H + c_j C " +
                     "in first order) was not positive definite even for short steps";
   } else if (flag == IDA_LSOLVE_FAIL) {
-    result.status = DynamicsStatus::LinearSolverFailed;
+    result.status = SolveStatus::LinearSolverFailed;
     result.reason = name +
                     ": the linear solve with K gave no finite correction even for short steps " +
                     "(K numerically singular)";
   } else {
-    result.status = DynamicsStatus::IntegratorFailed;
+    result.status = SolveStatus::IntegratorFailed;
     result.reason = name + (invalid ? ": " + evaluator.last_message() : ": " + message);
   }
 }
@@ -193,7 +168,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
   DynamicsResult result;
   const Eigen::Index n = objective.size();
   if (n == 0) {
-    result.status = DynamicsStatus::Converged;
+    result.status = SolveStatus::Converged;
     result.reason = "no free unknowns";
     result.energy = objective.energy();
     result.stable = true;
@@ -266,15 +241,15 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
     report.kinetic_energy = kinetic(y);
   }
   if (callbacks.on_step) callbacks.on_step(report);
-  auto finish = [&](DynamicsStatus status, std::string reason) {
+  auto finish = [&](SolveStatus status, std::string reason) {
     result.status = status;
     result.reason = std::move(reason);
   };
 
   if (!std::isfinite(report.energy) || !std::isfinite(report.gradient_measure)) {
-    finish(DynamicsStatus::NonFinite, "energy or gradient not finite at the start");
+    finish(SolveStatus::NonFinite, "energy or gradient not finite at the start");
   } else if (report.gradient_measure <= options.gradient_tolerance) {
-    finish(DynamicsStatus::Converged, "in equilibrium at the start");
+    finish(SolveStatus::Converged, "in equilibrium at the start");
   } else {
     const Eigen::VectorXd yp0 = system.consistent_derivatives(y, 0.0);
     IdaIntegrator integrator(system, options, y, yp0, absolute_tolerances());
@@ -349,13 +324,13 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       y = last_good;
       t = last_good_t;
       if (0.5 * h <= kStagnantStepRatio * t) {  // the objective is moved to y below the loop
-        finish(DynamicsStatus::IntegratorFailed,
+        finish(SolveStatus::IntegratorFailed,
                why + " even for steps of " + scientific(0.5 * h) + " at t = " + scientific(t));
         return false;
       }
       if (evaluator.move_to(y.data()) != 0) {
         evaluator.rethrow_if_fatal();
-        finish(DynamicsStatus::IntegratorFailed,
+        finish(SolveStatus::IntegratorFailed,
                "the objective rejected an accepted state: " + evaluator.last_message());
         return false;
       }
@@ -382,12 +357,12 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
     for (;;) {  // damped dynamics, then the end game; again if that fails
       for (;;) {
         if (callbacks.stop != nullptr && callbacks.stop->load()) {
-          finish(DynamicsStatus::Interrupted, "stop flag raised");
+          finish(SolveStatus::Interrupted, "stop flag raised");
           break;
         }
-        if (result.steps >= options.max_steps) {
-          finish(DynamicsStatus::MaxSteps,
-                 "no convergence in " + std::to_string(result.steps) + " steps");
+        if (result.iterations >= options.max_steps) {
+          finish(SolveStatus::IterationLimit,
+                 "no convergence in " + std::to_string(result.iterations) + " steps");
           break;
         }
         evaluator.clear_failures();
@@ -432,9 +407,9 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
             break;
           continue;
         }
-        ++result.steps;
+        ++result.iterations;
         IDAGetLastOrder(integrator.ida.get(), &report.order);
-        report.step = result.steps;
+        report.step = result.iterations;
         report.time = t;
         report.step_size = h;
         report.energy = step_energy;
@@ -445,21 +420,21 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
             total - last_total > options.dissipation_guard * std::max(total0 - last_total, 0.0) +
                                      1e-12 * std::abs(report.energy)) {
           // E + K rose: the step is taken again (see DynamicsOptions).
-          --result.steps;
+          --result.iterations;
           if (!retry_shorter(h, "E + K rises")) break;
           continue;
         }
         if (callbacks.on_step) callbacks.on_step(report);
         if (!std::isfinite(report.energy) || !std::isfinite(report.gradient_measure) ||
             !y.allFinite()) {
-          finish(DynamicsStatus::NonFinite,
-                 "non-finite state after step " + std::to_string(result.steps));
+          finish(SolveStatus::NonFinite,
+                 "non-finite state after step " + std::to_string(result.iterations));
           y = last_good;
           break;
         }
         if (h <= kStagnantStepRatio * t) {
           const bool nonfinite = evaluator.last_failure() == EvaluationFailure::NonFinite;
-          finish(nonfinite ? DynamicsStatus::NonFinite : DynamicsStatus::IntegratorFailed,
+          finish(nonfinite ? SolveStatus::NonFinite : SolveStatus::IntegratorFailed,
                  "step size " + scientific(h) + " stagnant at t = " + scientific(t) +
                      (evaluator.last_message().empty() ? "" : ": " + evaluator.last_message()));
           break;
@@ -484,7 +459,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
             std::max(std::abs(energy0 - report.energy), std::abs(report.energy));
         const bool at_rest = report.kinetic_energy <= options.kinetic_tolerance * energy_scale;
         if (report.gradient_measure <= options.gradient_tolerance && at_rest) {
-          finish(DynamicsStatus::Converged, "gradient and kinetic energy below tolerance");
+          finish(SolveStatus::Converged, "gradient and kinetic energy below tolerance");
           break;
         }
         // Settled near an equilibrium (see endgame_gradient_factor).
@@ -507,10 +482,10 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
         const bool far = options.rebase_distance > 0.0 &&
                          ((y.head(n) - rebased_at).cwiseQuotient(scales).cwiseAbs().maxCoeff() >
                           options.rebase_distance);
-        const bool due =
-            options.rebase_interval > 0 && result.steps - last_rebase >= options.rebase_interval;
+        const bool due = options.rebase_interval > 0 &&
+                         result.iterations - last_rebase >= options.rebase_interval;
         if (far || due) {
-          last_rebase = result.steps;
+          last_rebase = result.iterations;
           Eigen::VectorXd v = second_order ? Eigen::VectorXd(y.tail(n)) : Eigen::VectorXd();
           objective.rebase(second_order ? &v : nullptr);
           evaluator.sync();
@@ -540,17 +515,17 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
       evaluator.move_to(y.head(n));
       if (!endgame) break;
       const int max_iterations = static_cast<int>(std::min<long>(
-          options.endgame_iterations, std::max<long>(1, options.max_steps - result.steps)));
+          options.endgame_iterations, std::max<long>(1, options.max_steps - result.iterations)));
       if (second_order) y.tail(n).setZero();  // the infinite step ends at rest
       const NewtonResult polished =
-          run_endgame(objective, options, max_iterations, callbacks, result.steps, report);
-      result.steps += polished.iterations;
+          run_endgame(objective, options, max_iterations, callbacks, result.iterations, report);
+      result.iterations += polished.iterations;
       result.endgame_steps += polished.iterations;
       extra_factorizations += polished.factorizations;
       evaluator.sync();
       y.head(n) = objective.get();
       weights = objective.gradient_weights();
-      if (polished.status == NewtonStatus::MaxIterations && result.steps < options.max_steps &&
+      if (polished.status == SolveStatus::IterationLimit && result.iterations < options.max_steps &&
           options.endgame_growth > 1.0) {
         // Handed over too early (far from the equilibrium, in a region
         // where H happens to be positive definite): the dynamics go on at
@@ -578,7 +553,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
   result.energy = objective.energy();
   result.gradient_measure = weighted_max_norm(weights, evaluator.gradient());
   result.kinetic_energy = kinetic(y);
-  if (result.status != DynamicsStatus::NonFinite)
+  if (result.status != SolveStatus::NonFinite)
     result.stable = is_positive_definite(estimator, objective.hessian());
   result.factorizations = estimator.stats().factorizations +
                           system.cholesky().stats().factorizations + extra_factorizations;

@@ -13,22 +13,6 @@
 
 namespace xshell {
 
-const char* to_string(KineticDampingStatus status) {
-  switch (status) {
-    case KineticDampingStatus::Converged:
-      return "converged";
-    case KineticDampingStatus::MaxIterations:
-      return "maximum number of iterations reached";
-    case KineticDampingStatus::InvalidConfiguration:
-      return "invalid configurations";
-    case KineticDampingStatus::NonFinite:
-      return "non-finite values";
-    case KineticDampingStatus::Interrupted:
-      return "interrupted";
-  }
-  return "unknown";
-}
-
 namespace {
 
 constexpr double kTimeStep = 1.0;  // dt: the masses scale with dt^2, so its value is immaterial
@@ -80,13 +64,13 @@ KineticDampingResult solve_kinetic_damping(Objective& objective,
   result.mass_safety = options.mass_safety;
   const Eigen::Index n = objective.size();
   if (n == 0) {
-    result.status = KineticDampingStatus::Converged;
+    result.status = SolveStatus::Converged;
     result.reason = "no free unknowns";
     result.energy = objective.energy();
     result.stable = true;
     return result;
   }
-  auto finish = [&](KineticDampingStatus status, std::string reason) {
+  auto finish = [&](SolveStatus status, std::string reason) {
     result.status = status;
     result.reason = std::move(reason);
   };
@@ -132,18 +116,18 @@ KineticDampingResult solve_kinetic_damping(Objective& objective,
   };
 
   if (!std::isfinite(energy) || !std::isfinite(report.gradient_measure)) {
-    finish(KineticDampingStatus::NonFinite, "energy or gradient not finite at the start");
+    finish(SolveStatus::NonFinite, "energy or gradient not finite at the start");
   } else if (report.gradient_measure <= options.gradient_tolerance) {
-    finish(KineticDampingStatus::Converged, "in equilibrium at the start");
+    finish(SolveStatus::Converged, "in equilibrium at the start");
   } else {
     refresh_masses(0);
     for (;;) {
       if (callbacks.stop != nullptr && callbacks.stop->load()) {
-        finish(KineticDampingStatus::Interrupted, "stop flag raised");
+        finish(SolveStatus::Interrupted, "stop flag raised");
         break;
       }
       if (result.iterations >= options.max_iterations) {
-        finish(KineticDampingStatus::MaxIterations,
+        finish(SolveStatus::IterationLimit,
                "no convergence in " + std::to_string(result.iterations) + " iterations");
         break;
       }
@@ -235,7 +219,7 @@ KineticDampingResult solve_kinetic_damping(Objective& objective,
         } else if (rebased) {  // q is expressed in the old unknowns: no way back
           energy = accepted_energy;
           gradient = std::move(next_gradient);
-          finish(KineticDampingStatus::NonFinite,
+          finish(SolveStatus::NonFinite,
                  "non-finite gradient after iteration " + std::to_string(iteration));
           break;
         } else {
@@ -255,8 +239,7 @@ KineticDampingResult solve_kinetic_damping(Objective& objective,
         report.rejected = true;
         if (++rejected_since_peak > options.max_rejected_steps) {
           const bool invalid = failure.rfind("non-finite", 0) != 0;
-          finish(invalid ? KineticDampingStatus::InvalidConfiguration
-                         : KineticDampingStatus::NonFinite,
+          finish(invalid ? SolveStatus::InvalidConfiguration : SolveStatus::NonFinite,
                  std::to_string(rejected_since_peak) +
                      " steps rejected without a kinetic-energy peak between: " + failure);
           report.energy = energy;
@@ -275,7 +258,7 @@ KineticDampingResult solve_kinetic_damping(Objective& objective,
       const double energy_scale = std::max(std::abs(energy0 - energy), std::abs(energy));
       if (report.gradient_measure <= options.gradient_tolerance &&
           report.kinetic_energy <= options.kinetic_tolerance * energy_scale) {
-        finish(KineticDampingStatus::Converged, "gradient and kinetic energy below tolerance");
+        finish(SolveStatus::Converged, "gradient and kinetic energy below tolerance");
         break;
       }
     }
@@ -285,7 +268,7 @@ KineticDampingResult solve_kinetic_damping(Objective& objective,
   result.energy = energy;
   result.gradient_measure = weighted_max_norm(weights, gradient);
   result.kinetic_energy = at_rest ? 0.0 : ke_last;
-  if (result.status != KineticDampingStatus::NonFinite) {
+  if (result.status != SolveStatus::NonFinite) {
     CholeskySolver cholesky;
     result.stable = is_positive_definite(cholesky, objective.hessian());
     result.factorizations = cholesky.stats().factorizations;
