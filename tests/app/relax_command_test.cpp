@@ -7,7 +7,7 @@
 
 #include "command_runner.hpp"
 
-extern char** environ;  // the process's environment (POSIX), at global scope
+extern char** environ;
 
 namespace xshell::test {
 
