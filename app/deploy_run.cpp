@@ -1,5 +1,6 @@
 #include "deploy_run.hpp"
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -20,6 +21,9 @@ namespace {
 
 constexpr const char* kTable = "deployment.csv";
 constexpr const char* kPlot = "deployment.png";
+// A deployment whose every step converged (SolveStatus::Converged) is
+// "completed" in its summary object and its reason.
+constexpr const char* kCompleted = "completed";
 constexpr const char* kHeader =
     "step,average_angle,energy_total,energy_stretching,energy_bending,energy_twisting,torque,"
     "iterations,stable\n";
@@ -33,35 +37,120 @@ std::string table_row(const DeploymentStep& s) {
 }
 
 DeploymentOptions deployment_options(const Config& config) {
-  const SolverOptions& s = config.solver;
   DeploymentOptions o;
-  o.solver =
-      s.method == SolverMethod::Dynamics ? DeploymentSolver::Dynamics : DeploymentSolver::Newton;
-  o.newton.gradient_tolerance = s.gradient_tolerance;
-  o.newton.max_iterations = s.max_iterations;
-  o.newton.line_search = s.line_search == LineSearchSetting::Energy
-                             ? LineSearch::Energy
-                             : LineSearch::KinsolWithEnergyFallback;
-  o.dynamics.form = s.first_order ? DynamicsForm::FirstOrder : DynamicsForm::SecondOrder;
-  o.dynamics.mass = s.mass == MassSetting::Fictitious ? MassModel::Fictitious : MassModel::Physical;
-  o.dynamics.start.velocity =
-      s.start == StartSetting::Rest ? DynamicsStart::Rest : DynamicsStart::SlowManifold;
-  o.dynamics.damping.coefficient = s.damping.value_or(0.0);
-  o.dynamics.stopping.gradient_tolerance = s.gradient_tolerance;
-  o.dynamics.stopping.max_steps = s.step_limit();
+  o.solver = config.solver.method == SolverMethod::Dynamics ? DeploymentSolver::Dynamics
+                                                            : DeploymentSolver::Newton;
+  o.newton = newton_options(config.solver);
+  o.dynamics = dynamics_options(config.solver);
   return o;
 }
 
-const char* status_name(DeploymentStatus s) {
-  switch (s) {
-    case DeploymentStatus::Completed:
-      return "completed";
-    case DeploymentStatus::StepFailed:
-      return "step_failed";
-    case DeploymentStatus::Interrupted:
-      return "interrupted";
+DeploymentPlan make_plan(const Deployment& d, const LinkageProblem& problem) {
+  DeploymentPlan plan;
+  plan.steps = d.steps;
+  if (d.target == DeploymentTarget::AverageOpeningAngle) {
+    plan.average_angle = d.average_opening_angle;
+  } else {
+    for (const JointAngle& a : d.joint_angles)
+      plan.joint_angles.push_back(
+          {problem.linkage().topology().joint_of_vertex[a.vertex], a.angle});
   }
-  return "unknown";
+  return plan;
+}
+
+// The deployment's callbacks: every solver iteration into the history
+// (numbered over all steps, at the time of the step being solved) and a
+// progress line; every accepted step into deployment.csv (rewritten
+// atomically), a VTK step and a progress line. Stops the deployment on the
+// run's stop flag and on its own output failure.
+class DeploymentRecorder {
+ public:
+  DeploymentRecorder(const fs::path& dir, const RunHooks& hooks) : dir_(dir), hooks_(hooks) {}
+
+  DeploymentCallbacks callbacks() {
+    DeploymentCallbacks c;
+    c.stop = &stop_;
+    c.on_newton_iteration = [this](const NewtonReport& r) { on_report(r, true); };
+    // Thousands of time steps: a progress line every 100.
+    c.on_dynamics_step = [this](const DynamicsReport& r) { on_report(r, r.step % 100 == 0); };
+    c.on_step = [this](const DeploymentStep& s) { on_step(s); };
+    return c;
+  }
+
+  void poll() {
+    hooks_.poll();
+    if (hooks_.stop->load() || !output_error_.empty()) stop_ = true;
+  }
+
+  const std::string& output_error() const { return output_error_; }
+
+ private:
+  // A solver's report (the step's start is reported again by each solve).
+  template <class Report>
+  void on_report(const Report& r, bool print) {
+    if (report_number(r) > 0) ++iterations_;
+    hooks_.history->push_back(history_record(r, iterations_, solving_));
+    if (hooks_.progress && report_number(r) > 0 && print) print_progress(r, true);
+    poll();
+  }
+
+  void on_step(const DeploymentStep& s) {
+    solving_ = s.step + 1;
+    table_ += table_row(s);
+    try {
+      write_file_atomically(dir_ / kTable, table_);
+    } catch (const std::exception& e) {
+      if (output_error_.empty()) output_error_ = e.what();
+    }
+    hooks_.snapshot(s.step, false);
+    if (hooks_.progress)
+      std::fprintf(stderr,
+                   "deploy step %3d  s %.4f  angle %.6f rad (%.3f deg)  energy %.6e  torque %.6e  "
+                   "iterations %ld%s%s  "
+                   "%.2f s\n",
+                   s.step, s.fraction, s.average_angle, s.average_angle * 180.0 / M_PI,
+                   s.energy.total(), s.torque, s.iterations, s.stable ? "" : "  NOT stable",
+                   s.halvings > 0 ? "  (halved)" : "", s.seconds);
+    poll();
+  }
+
+  fs::path dir_;
+  const RunHooks& hooks_;
+  std::atomic<bool> stop_{false};
+  std::string table_ = kHeader;
+  int solving_ = 0;      // the step being solved
+  long iterations_ = 0;  // over all steps, for the history
+  std::string output_error_;
+};
+
+// The summary's "deployment" object.
+DeploymentSummary deployment_summary(const Deployment& d, const DeploymentResult& result,
+                                     const LinkageProblem& problem) {
+  DeploymentSummary ds;
+  ds.actuation =
+      d.target == DeploymentTarget::AverageOpeningAngle ? "average_opening_angle" : "joint_angles";
+  ds.status = result.converged() ? kCompleted : to_string(result.status);
+  ds.steps = result.steps.empty() ? 0 : result.steps.back().step;
+  ds.failed_attempts = result.failed_attempts;
+  ds.iterations = result.iterations;
+  ds.start_average_angle = result.start_angle;
+  if (d.target == DeploymentTarget::AverageOpeningAngle)
+    ds.target_average_angle = d.average_opening_angle;
+  ds.final_average_angle = average_opening_angle(problem.linkage());
+  ds.final_torque = result.steps.empty() ? 0.0 : result.steps.back().torque;
+  return ds;
+}
+
+// deployment.png from deployment.csv, when there is a table to plot.
+void write_plot(const fs::path& dir, bool has_table, DeploymentSummary& ds) {
+  std::error_code ignored;
+  fs::remove(dir / kPlot, ignored);  // never leave an earlier run's plot behind
+  if (!has_table) return;
+  const PlotOutcome plot = plot_deployment(dir / kTable, dir / kPlot);
+  if (plot.written)
+    ds.plot = kPlot;
+  else
+    std::cerr << "xshell: " << kPlot << " skipped: " << plot.message << "\n";
 }
 
 }  // namespace
@@ -101,117 +190,34 @@ void prepare_deployment(const Config& config, std::optional<LinkageProblem>& pro
   problem.emplace(std::move(linkage), statics);
 }
 
-DeploymentRun run_deployment(const Config& config, LinkageProblem& problem, const fs::path& dir,
-                             const DeploymentHooks& hooks, RunSummary& summary) {
+SolverRun run_deployment(const Config& config, LinkageProblem& problem, const fs::path& dir,
+                         const RunHooks& hooks) {
   const Deployment& d = *config.deployment;
-  DeploymentPlan plan;
-  plan.steps = d.steps;
-  if (d.target == DeploymentTarget::AverageOpeningAngle) {
-    plan.average_angle = d.average_opening_angle;
-  } else {
-    for (const JointAngle& a : d.joint_angles)
-      plan.joint_angles.push_back(
-          {problem.linkage().topology().joint_of_vertex[a.vertex], a.angle});
-  }
-  const DeploymentOptions options = deployment_options(config);
-
-  DeploymentRun run;
-  std::atomic<bool> stop{false};
-  auto poll = [&] {
-    if ((hooks.halted && hooks.halted()) || !run.output_error.empty()) stop = true;
-  };
-  std::string table = kHeader;
-  int solving = 0;      // the step being solved
-  long iterations = 0;  // over all steps, for the history
-  DeploymentCallbacks callbacks;
-  callbacks.stop = &stop;
-  callbacks.on_newton_iteration = [&](const NewtonReport& r) {
-    if (r.iteration > 0) ++iterations;
-    summary.history.push_back(
-        {iterations, double(solving), r.energy, r.gradient_measure, r.step_norm, 0.0, r.seconds});
-    if (hooks.progress && r.iteration > 0)
-      std::fprintf(
-          stderr,
-          "  newton %3d  energy %.10e  gradient %.3e  step %.3e  factorizations %ld%s  %.3f s\n",
-          r.iteration, r.energy, r.gradient_measure, r.step_norm, r.factorizations,
-          r.shifted ? " (shifted)" : "", r.seconds);
-    poll();
-  };
-  callbacks.on_dynamics_step = [&](const DynamicsReport& r) {
-    if (r.step > 0) ++iterations;
-    summary.history.push_back({iterations, double(solving), r.energy, r.gradient_measure,
-                               r.step_size, r.kinetic_energy, 0.0});
-    if (hooks.progress && r.step > 0 && r.step % 100 == 0)
-      std::fprintf(stderr,
-                   "  dynamics %6ld  t %.4e  dt %.3e  energy %.10e  kinetic %.3e  gradient %.3e\n",
-                   r.step, r.time, r.step_size, r.energy, r.kinetic_energy, r.gradient_measure);
-    poll();
-  };
-  callbacks.on_step = [&](const DeploymentStep& s) {
-    solving = s.step + 1;
-    table += table_row(s);
-    try {
-      write_file_atomically(dir / kTable, table);
-    } catch (const std::exception& e) {
-      if (run.output_error.empty()) run.output_error = e.what();
-    }
-    if (hooks.snapshot) hooks.snapshot(s.step, false);
-    if (hooks.progress)
-      std::fprintf(stderr,
-                   "deploy step %3d  s %.4f  angle %.6f rad (%.3f deg)  energy %.6e  torque %.6e  "
-                   "iterations %ld%s%s  "
-                   "%.2f s\n",
-                   s.step, s.fraction, s.average_angle, s.average_angle * 180.0 / M_PI,
-                   s.energy.total(), s.torque, s.iterations, s.stable ? "" : "  NOT stable",
-                   s.halvings > 0 ? "  (halved)" : "", s.seconds);
-    poll();
-  };
-  poll();
-  const DeploymentResult result = deploy(problem, plan, options, callbacks);
+  DeploymentRecorder recorder(dir, hooks);
+  recorder.poll();
+  const DeploymentResult result =
+      deploy(problem, make_plan(d, problem), deployment_options(config), recorder.callbacks());
   const int last = result.steps.empty() ? 0 : result.steps.back().step;
-  if (hooks.snapshot) hooks.snapshot(last, true);
+  hooks.snapshot(last, true);
 
-  const bool completed = result.completed();
-  run.interrupted = result.status == DeploymentStatus::Interrupted && run.output_error.empty();
-  summary.status = completed ? "converged" : run.interrupted ? "interrupted" : "step_failed";
-  summary.reason = "deployment " + std::string(to_string(result.status)) + ": " + result.reason;
-  summary.converged = completed;
-  summary.iterations = result.iterations;
-  if (!result.steps.empty()) {
-    summary.stable = result.steps.back().stable;
-    summary.gradient_norm = result.steps.back().gradient_measure;
-  } else {
-    summary.gradient_norm = problem.gradient_measure();  // the start, never in equilibrium
-  }
-  DeploymentSummary ds;
-  ds.actuation =
-      d.target == DeploymentTarget::AverageOpeningAngle ? "average_opening_angle" : "joint_angles";
-  ds.status = status_name(result.status);
-  ds.steps = last;
-  ds.failed_attempts = result.failed_attempts;
-  ds.iterations = result.iterations;
-  ds.start_average_angle = result.start_angle;
-  if (d.target == DeploymentTarget::AverageOpeningAngle)
-    ds.target_average_angle = d.average_opening_angle;
-  ds.final_average_angle = average_opening_angle(problem.linkage());
-  ds.final_torque = result.steps.empty() ? 0.0 : result.steps.back().torque;
-
-  std::error_code ignored;
-  fs::remove(dir / kPlot, ignored);  // never leave an earlier run's plot behind
-  if (!result.steps.empty() && run.output_error.empty()) {
-    const PlotOutcome plot = plot_deployment(dir / kTable, dir / kPlot);
-    if (plot.written)
-      ds.plot = kPlot;
-    else
-      std::cerr << "xshell: " << kPlot << " skipped: " << plot.message << "\n";
-  }
+  SolverRun run;
+  run.output_error = recorder.output_error();
+  run.result = result;
+  run.result.reason = std::string("deployment ") +
+                      (result.converged() ? kCompleted : describe(result.status)) + ": " +
+                      result.reason;
+  // Stopped by its own output failure, not by a signal or the run's outputs.
+  if (result.status == SolveStatus::Interrupted && !run.output_error.empty())
+    run.result.status = SolveStatus::StepFailed;
+  DeploymentSummary ds = deployment_summary(d, result, problem);
+  write_plot(dir, !result.steps.empty() && run.output_error.empty(), ds);
   std::fprintf(
       stderr,
       "xshell: deployment %s: %d steps (%d retried), average opening angle %.6f rad (%.3f deg), "
       "torque %.6e, %ld iterations, %.2f s\n",
       ds.status.c_str(), ds.steps, ds.failed_attempts, ds.final_average_angle,
       ds.final_average_angle * 180.0 / M_PI, ds.final_torque, ds.iterations, result.seconds);
-  summary.deployment = ds;
+  run.deployment = ds;
   return run;
 }
 

@@ -16,15 +16,13 @@
 // larger target it opens further, to a smaller one it closes.
 #pragma once
 
-#include <atomic>
 #include <filesystem>
-#include <functional>
 #include <optional>
-#include <string>
 
 #include "io/config.hpp"
 #include "io/summary_file.hpp"
 #include "linkage/statics_problem.hpp"
+#include "solver_runs.hpp"
 
 namespace xshell {
 
@@ -38,22 +36,13 @@ namespace xshell {
 void prepare_deployment(const Config& config, std::optional<LinkageProblem>& problem,
                         StaticsSetup statics);
 
-struct DeploymentHooks {
-  std::function<void(double time, bool force)> snapshot;  // a VTK step of the current state
-  std::function<bool()> halted;  // true once the run must stop (signal or output failure)
-  bool progress = false;         // a line per step on stderr
-};
-
-struct DeploymentRun {
-  bool interrupted = false;  // stopped by halted()
-  std::string output_error;  // deployment.csv could not be written
-};
-
 // Runs config.deployment on `problem` (readied by prepare_deployment),
-// writing into `dir`; fills `summary` (status, reason, converged, stable,
-// iterations, gradient_norm, history, deployment).
-DeploymentRun run_deployment(const Config& config, LinkageProblem& problem,
-                             const std::filesystem::path& dir, const DeploymentHooks& hooks,
-                             RunSummary& summary);
+// writing deployment.csv and deployment.png into `dir` and a VTK step per
+// accepted step through hooks.snapshot. The result's status is the summary's
+// ("converged" when every step converged), its reason "deployment
+// <completed|step failed|interrupted>: ..."; the run's deployment object is
+// the summary's "deployment".
+SolverRun run_deployment(const Config& config, LinkageProblem& problem,
+                         const std::filesystem::path& dir, const RunHooks& hooks);
 
 }  // namespace xshell

@@ -180,7 +180,7 @@ void run_other_solvers(const BenchCase& c, const BenchSettings& settings, BenchR
     options.stopping.gradient_tolerance = 1e-6;
     options.stopping.max_steps = 20000;
     const DynamicsResult result = solve_dynamics(objective, options);
-    r.dynamics_steps = result.steps;
+    r.dynamics_steps = result.iterations;
     dynamics_s.push_back(result.seconds);
     r.dynamics_status = result.converged() ? "converged" : "failed";
   }
@@ -215,14 +215,14 @@ void deployment_step(LinkageProblem& problem, BenchResult& r) {
     return;
   }
   r.deployment_status = "failed";
-  if (!result.completed())
+  if (!result.converged())
     std::fprintf(stderr, "%s, n_s %d: deployment step %s: %s\n", r.name.c_str(), r.subdivisions,
-                 to_string(result.status), result.reason.c_str());
+                 describe(result.status), result.reason.c_str());
   if (result.steps.size() < 2) return;  // step 0 is the start's own solve
   const DeploymentStep& step = result.steps.back();
   r.deployment_iterations = step.iterations;
   r.deployment_s = step.seconds;
-  if (result.completed()) r.deployment_status = step.stable ? "converged" : "converged_unstable";
+  if (result.converged()) r.deployment_status = step.stable ? "converged" : "converged_unstable";
 }
 
 BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {

@@ -1,7 +1,6 @@
 #include "integrators/deployment/constrained_newton.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -11,87 +10,75 @@
 #include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/linear_algebra/shifted_factorization.hpp"
 #include "integrators/newton/descent_step.hpp"
+#include "integrators/newton/iteration_checks.hpp"
 
 namespace xshell {
 
 namespace {
 
-std::string scientific(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3e", value);
-  return text;
-}
+// Round-off floor: the measure has not halved for kStalledIterations
+// iterations while the energy no longer changes.
+constexpr int kStalledIterations = 5;
 
-struct Backtrack {
-  bool accepted = false;
-  int trials = 0, rejected = 0;
+// The state of one solve() between its steps.
+struct ConstrainedRun {
+  ConstrainedRun(double target, const NewtonCallbacks& callbacks, double constraint_tolerance,
+                 int max_saddle_escapes)
+      : target(target),
+        callbacks(callbacks),
+        constraint_tolerance(constraint_tolerance),
+        max_saddle_escapes(max_saddle_escapes) {}
+  double target;  // A
+  const NewtonCallbacks& callbacks;
+  double constraint_tolerance;
+  int max_saddle_escapes;
+  ConstrainedNewtonResult result;
+  NewtonReport report;    // of the last iteration (or the start)
+  Eigen::VectorXd mass;   // at the start
+  int iteration = 0;      // iterations done (saddle escapes included)
+  bool stagnant = false;  // the last step was below the scaled step tolerance
+  double best_measure = 0.0;
+  int stalled = 0;  // iterations since the measure last halved, at a constant energy
+  long factorizations_at_start = 0;
 };
 
-// Armijo backtracking from q0 along p (as descent_step.hpp, whose options
-// it takes, but for a given direction) on the exact penalty merit
-//   phi(q) = E(q) + mu |a . q - A|:
-// the energy itself on the constraint's plane (where both steps descend:
-// g . p = -r^T K^-1 r < 0), and from a start off the plane, where the
-// energy may have to rise to restore the constraint, a merit that the step
-// decreases when mu > max(|tau|, g . p / |c|) (here twice that): its
-// slope is g . p - mu |c| < 0. Accepts phi(q0 + t p) <= phi(q0) + c1 t
-// min(slope, 0) (+ round-off slack), or, in the end game, the full step
-// when it lowers |diag(w) (g - tau a)|. On failure the objective is back at q0.
-Backtrack backtrack(ObjectiveEvaluator& evaluator, const AverageConstraint& constraint,
-                    double target, double mu, const Eigen::VectorXd& q0, double e0,
-                    const Eigen::VectorXd& p, double slope, const Eigen::VectorXd& w, double r0,
-                    const DescentStepOptions& options) {
-  Backtrack result;
-  auto merit = [&](double energy, const Eigen::VectorXd& q) {
-    return energy + mu * std::abs(constraint.value(q) - target);
-  };
-  const double phi0 = merit(e0, q0);
-  double t = 1.0;
-  for (int k = 0; k <= options.max_backtracks; ++k, t *= options.shrink) {
-    const Eigen::VectorXd trial = q0 + t * p;
-    if (trial == q0) break;
-    ++result.trials;
-    double energy = 0.0;
-    try {
-      energy = evaluator.energy_at(trial);
-    } catch (const std::domain_error& e) {
-      evaluator.record(EvaluationFailure::InvalidConfiguration, e.what());
-      ++result.rejected;
-      continue;
-    }
-    if (!std::isfinite(energy)) {
-      evaluator.record(EvaluationFailure::NonFinite, "the energy is not finite");
-      ++result.rejected;
-      continue;
-    }
-    const double slack = options.energy_noise * std::abs(e0);
-    if (merit(energy, trial) <=
-        phi0 + options.sufficient_decrease * t * std::min(slope, 0.0) + slack) {
-      result.accepted = true;
-      return result;
-    }
-    if (k == 0 && std::abs(energy - e0) <= options.endgame_energy_change * std::abs(e0)) {
-      const Eigen::VectorXd g = evaluator.gradient();
-      if (g.allFinite() && (w.array() * constraint.projected(g).array()).matrix().norm() < r0) {
-        result.accepted = true;
-        return result;
-      }
-    }
-  }
-  evaluator.move_to(q0);
-  return result;
-}
+// The Newton step p and its multiplier tau.
+struct ConstrainedStep {
+  Eigen::VectorXd p;
+  double tau = 0.0;
+};
 
 }  // namespace
 
 struct ConstrainedNewtonSolver::Impl {
+  Objective& objective;
+  const AverageConstraint& constraint;
+  const NewtonOptions& options;
   ObjectiveEvaluator evaluator;
   CholeskySolver full;     // H, for the Schur complement
   CholeskySolver reduced;  // B^T H B, for the fallback and the stability test
-  explicit Impl(Objective& objective) : evaluator(objective) {}
+  Impl(Objective& objective, const AverageConstraint& constraint, const NewtonOptions& options)
+      : objective(objective), constraint(constraint), options(options), evaluator(objective) {}
   long factorizations() const {
     return full.stats().factorizations + reduced.stats().factorizations;
   }
+  // The convergence measure: max_i |w_i (g - tau a)_i| with the least-squares tau.
+  double measure(const Eigen::VectorXd& w, const Eigen::VectorXd& g) const {
+    return weighted_max_norm(w, constraint.projected(g));
+  }
+  void start(ConstrainedRun& run);
+  bool finished(ConstrainedRun& run);
+  bool iterate(ConstrainedRun& run);
+  bool direction(ConstrainedRun& run, const Eigen::SparseMatrix<double>& H,
+                 const Eigen::VectorXd& g0, double c, ConstrainedStep& step);
+  bool line_search(ConstrainedRun& run, const Eigen::VectorXd& q0, double e0,
+                   const Eigen::VectorXd& g0, double c, const Eigen::VectorXd& w,
+                   const ConstrainedStep& step);
+  void record_step(ConstrainedRun& run, const Eigen::VectorXd& q0, double e0,
+                   const Eigen::VectorXd& w);
+  bool escape(ConstrainedRun& run);
+  bool escape_saddle(const Eigen::VectorXd& mass);
+  void finish(ConstrainedRun& run);
 };
 
 ConstrainedNewtonSolver::ConstrainedNewtonSolver(Objective& objective,
@@ -100,7 +87,7 @@ ConstrainedNewtonSolver::ConstrainedNewtonSolver(Objective& objective,
     : objective_(objective),
       constraint_(constraint),
       options_(options),
-      impl_(std::make_unique<Impl>(objective)) {
+      impl_(std::make_unique<Impl>(objective, constraint, options_)) {
   if (objective.size() != constraint.size())
     throw std::invalid_argument("constrained Newton: the constraint does not fit the objective");
 }
@@ -111,206 +98,231 @@ ConstrainedNewtonResult ConstrainedNewtonSolver::solve(double target,
                                                        const NewtonCallbacks& callbacks) {
   const Clock::time_point start = Clock::now();
   Impl& s = *impl_;
-  const long factorizations_before = s.factorizations();
-  const Eigen::VectorXd& a = constraint_.coefficients();
-  ConstrainedNewtonResult result;
-  s.evaluator.sync();
-  s.evaluator.clear_failures();
-  const Eigen::VectorXd mass = objective_.mass();
-  DescentStepOptions descent;
-  descent.max_step = options_.max_step;
-  auto measure = [&](const Eigen::VectorXd& w, const Eigen::VectorXd& g) {
-    return weighted_max_norm(w, constraint_.projected(g));
-  };
-
-  NewtonReport report;
-  report.energy = objective_.energy();
-  report.gradient_measure = measure(objective_.gradient_weights(), s.evaluator.gradient());
-  if (callbacks.on_iteration) callbacks.on_iteration(report);
-  bool stagnant = false;
-  // Round-off floor: the measure has not halved for kStalledIterations
-  // iterations while the energy no longer changes.
-  constexpr int kStalledIterations = 5;
-  double best_measure = report.gradient_measure;
-  int stalled = 0;
-
-  int iteration = 0;
-  for (;;) {
-    for (;; ++iteration) {
-      result.iterations = iteration;
-      result.energy = report.energy;
-      result.gradient_measure = report.gradient_measure;
-      const double residual = target - constraint_.value(objective_.get());
-      if (!std::isfinite(report.energy) || !std::isfinite(report.gradient_measure)) {
-        result.status = NewtonStatus::NonFinite;
-        result.reason =
-            "energy or gradient not finite after " + std::to_string(iteration) + " iterations";
-        break;
-      }
-      if (report.gradient_measure <= options_.gradient_tolerance &&
-          std::abs(residual) <= constraint_tolerance) {
-        result.status = NewtonStatus::Converged;
-        result.reason = "gradient measure " + scientific(report.gradient_measure) + " <= tolerance";
-        break;
-      }
-      if (stagnant || stalled >= kStalledIterations) {
-        result.status = NewtonStatus::LineSearchFailed;
-        result.reason = std::string("stagnation: ") +
-                        (stagnant ? "the step fell below the scaled step tolerance"
-                                  : "no progress in " + std::to_string(kStalledIterations) +
-                                        " iterations at a constant energy") +
-                        " at gradient measure " + scientific(report.gradient_measure) +
-                        " (round-off floor above the tolerance?)";
-        break;
-      }
-      if (callbacks.stop != nullptr && callbacks.stop->load()) {
-        result.status = NewtonStatus::Interrupted;
-        result.reason = "stop flag raised";
-        break;
-      }
-      if (iteration >= options_.max_iterations) {
-        result.status = NewtonStatus::MaxIterations;
-        result.reason = "no convergence in " + std::to_string(iteration) + " iterations";
-        break;
-      }
-
-      const Clock::time_point iteration_start = Clock::now();
-      const long factorizations_at_start = s.factorizations();
-      objective_.rebase();
-      s.evaluator.sync();
-      const Eigen::VectorXd q0 = objective_.get();
-      const Eigen::VectorXd w = objective_.gradient_weights();
-      // The Hessian first: the linkage's pass gives the gradient with it.
-      const Eigen::SparseMatrix<double>& H = objective_.hessian();
-      const Eigen::VectorXd g0 = s.evaluator.gradient();
-      const double e0 = objective_.energy();
-      const double c = target - constraint_.value(q0);
-
-      Eigen::VectorXd p;
-      double tau = 0.0;  // the step's multiplier
-      report.shifted = false;
-      report.shift = 0.0;
-      const FactorizationStatus status = s.full.factorize(H);
-      if (status == FactorizationStatus::NonFinite) {
-        result.status = NewtonStatus::NonFinite;
-        result.reason = "the Hessian is not finite";
-        break;
-      }
-      if (status == FactorizationStatus::PositiveDefinite) {
-        // Schur complement: two solves with the one factorization.
-        const Eigen::VectorXd x1 = s.full.solve(g0), x2 = s.full.solve(a);
-        tau = (c + a.dot(x1)) / a.dot(x2);
-        p = tau * x2 - x1;
-        ++result.schur_iterations;
-      } else {
-        const ShiftedFactorization f = factorize_with_shift(
-            s.reduced, constraint_.reduce(H), constraint_.reduce_diagonal(mass), options_.shift);
-        if (f.status != FactorizationStatus::PositiveDefinite) {
-          result.status = f.status == FactorizationStatus::NonFinite
-                              ? NewtonStatus::NonFinite
-                              : NewtonStatus::LinearSolverFailed;
-          result.reason =
-              "the constrained Hessian could not be factorized even with the largest shift";
-          break;
-        }
-        // Restore the constraint by the minimal shift d0, then Newton on the
-        // plane with the gradient extrapolated there: g0 + H d0.
-        const Eigen::VectorXd d0 = (c / a.squaredNorm()) * a;
-        const Eigen::VectorXd g_shifted = c != 0.0 ? Eigen::VectorXd(g0 + H * d0) : g0;
-        p = constraint_.expand(-s.reduced.solve(constraint_.restrict(g_shifted))) + d0;
-        tau = constraint_.multiplier(g0);
-        report.shifted = f.shifted;
-        report.shift = f.shift;
-        ++result.null_space_iterations;
-      }
-      const double length = p.norm();
-      if (!std::isfinite(length)) {
-        result.status = NewtonStatus::NonFinite;
-        result.reason = "the Newton step is not finite";
-        break;
-      }
-      if (length > options_.max_step) p *= options_.max_step / length;
-
-      const double r0 = (w.array() * constraint_.projected(g0).array()).matrix().norm();
-      Backtrack step;
-      try {
-        const double gp = g0.dot(p);
-        const double mu =
-            c == 0.0 ? 0.0 : 2.0 * std::max(std::abs(tau), std::max(gp, 0.0) / std::abs(c));
-        step = backtrack(s.evaluator, constraint_, target, mu, q0, e0, p, gp - mu * std::abs(c), w,
-                         r0, descent);
-      } catch (...) {
-        objective_.set(q0);
-        throw;
-      }
-      if (!step.accepted) {
-        objective_.set(q0);
-        s.evaluator.sync();
-        const bool all_rejected = step.trials > 0 && step.rejected == step.trials;
-        result.status = all_rejected && s.evaluator.last_failure() == EvaluationFailure::NonFinite
-                            ? NewtonStatus::NonFinite
-                            : NewtonStatus::LineSearchFailed;
-        result.reason = all_rejected ? "the objective failed at every trial point: " +
-                                           s.evaluator.last_message()
-                                     : "no energy decrease along the constrained Newton step";
-        break;
-      }
-      const Eigen::VectorXd q = objective_.get();
-      report.iteration = iteration + 1;
-      report.energy = objective_.energy();
-      report.gradient_measure = measure(w, s.evaluator.gradient());
-      report.step_norm = (q - q0).lpNorm<Eigen::Infinity>();
-      report.energy_line_search = true;
-      stagnant = ((q - q0).array().abs() / (1.0 + q.array().abs())).maxCoeff() <=
-                 options_.scaled_step_tolerance;
-      if (report.gradient_measure < 0.5 * best_measure) {
-        best_measure = report.gradient_measure;
-        stalled = 0;
-      } else if (std::abs(report.energy - e0) <= 1e-13 * std::abs(e0)) {
-        ++stalled;
-      }
-      report.factorizations = s.factorizations() - factorizations_at_start;
-      report.seconds = seconds_since(iteration_start);
-      if (callbacks.on_iteration) callbacks.on_iteration(report);
-    }
-
-    if (result.status != NewtonStatus::NonFinite)
-      result.stable = is_positive_definite(s.reduced, constraint_.reduce(objective_.hessian()));
-    if (!result.converged() || result.stable || result.saddle_escapes >= max_saddle_escapes) break;
-    // A saddle: leave it downhill along negative curvature, then iterate on.
-    const Clock::time_point escape_start = Clock::now();
-    const long factorizations_at_escape = s.factorizations();
-    const Eigen::VectorXd q_saddle = objective_.get();
-    if (!escape_saddle(mass)) break;
-    ++result.saddle_escapes;
-    ++iteration;
-    s.evaluator.sync();
-    report.iteration = iteration;
-    report.energy = objective_.energy();
-    report.gradient_measure = measure(objective_.gradient_weights(), s.evaluator.gradient());
-    report.step_norm = (objective_.get() - q_saddle).lpNorm<Eigen::Infinity>();
-    report.shifted = true;
-    report.factorizations = s.factorizations() - factorizations_at_escape;
-    report.seconds = seconds_since(escape_start);
-    if (callbacks.on_iteration) callbacks.on_iteration(report);
-    stagnant = false;
-    best_measure = report.gradient_measure;
-    stalled = 0;
-    result.stable = false;
-  }  // saddle escapes
-  const Eigen::VectorXd g = objective_.gradient();
-  result.multiplier = constraint_.multiplier(g);
-  result.constraint_residual = target - constraint_.value(objective_.get());
-  result.factorizations = s.factorizations() - factorizations_before;
-  result.seconds = seconds_since(start);
-  return result;
+  ConstrainedRun run(target, callbacks, constraint_tolerance, max_saddle_escapes);
+  s.start(run);
+  run.result.setup_seconds = seconds_since(start);
+  do {  // iterations, and again after each escape from a saddle
+    while (!s.finished(run) && s.iterate(run)) ++run.iteration;
+  } while (s.escape(run));
+  s.finish(run);
+  run.result.seconds = seconds_since(start);
+  return run.result;
 }
 
-bool ConstrainedNewtonSolver::escape_saddle(const Eigen::VectorXd& mass) {
-  Impl& s = *impl_;
-  const Eigen::SparseMatrix<double> Hz = constraint_.reduce(objective_.hessian());
-  const Eigen::VectorXd Mz = constraint_.reduce_diagonal(mass);
-  const ShiftedFactorization f = factorize_with_shift(s.reduced, Hz, Mz, options_.shift);
+// Reports the start as iteration 0.
+void ConstrainedNewtonSolver::Impl::start(ConstrainedRun& run) {
+  run.factorizations_at_start = factorizations();
+  evaluator.sync();
+  evaluator.clear_failures();
+  run.mass = objective.mass();
+  run.report.energy = objective.energy();
+  run.report.gradient_measure = measure(objective.gradient_weights(), evaluator.gradient());
+  if (run.callbacks.on_iteration) run.callbacks.on_iteration(run.report);
+  run.best_measure = run.report.gradient_measure;
+}
+
+bool ConstrainedNewtonSolver::Impl::finished(ConstrainedRun& run) {
+  const double residual = run.target - constraint.value(objective.get());
+  IterationCheck check;
+  check.iterations = run.iteration;
+  check.energy = run.report.energy;
+  check.gradient_measure = run.report.gradient_measure;
+  check.converged = run.report.gradient_measure <= options.gradient_tolerance &&
+                    std::abs(residual) <= run.constraint_tolerance;
+  if (run.stagnant)
+    check.stagnation = "the step fell below the scaled step tolerance";
+  else if (run.stalled >= kStalledIterations)
+    check.stagnation =
+        "no progress in " + std::to_string(kStalledIterations) + " iterations at a constant energy";
+  return iteration_finished(check, run.callbacks.stop, options.max_iterations, run.result);
+}
+
+// One iteration after a rebase: the step (Schur complement, or the null
+// space), its line search, the report. Returns false, with the result set
+// and the objective at the last good state, when the solve must end.
+bool ConstrainedNewtonSolver::Impl::iterate(ConstrainedRun& run) {
+  const Clock::time_point iteration_start = Clock::now();
+  const long factorizations_before = factorizations();
+  objective.rebase();
+  evaluator.sync();
+  const Eigen::VectorXd q0 = objective.get();
+  const Eigen::VectorXd w = objective.gradient_weights();
+  // The Hessian first: the linkage's pass gives the gradient with it.
+  const Eigen::SparseMatrix<double>& H = objective.hessian();
+  const Eigen::VectorXd g0 = evaluator.gradient();
+  const double e0 = objective.energy();
+  const double c = run.target - constraint.value(q0);
+  ConstrainedStep step;
+  if (!direction(run, H, g0, c, step)) return false;
+  if (!line_search(run, q0, e0, g0, c, w, step)) return false;
+  record_step(run, q0, e0, w);
+  run.report.factorizations = factorizations() - factorizations_before;
+  run.report.seconds = seconds_since(iteration_start);
+  if (run.callbacks.on_iteration) run.callbacks.on_iteration(run.report);
+  return true;
+}
+
+// The Newton step from gradient g0 and constraint residual c: by the Schur
+// complement when H is positive definite, else on the constraint's null
+// space (the header). Its length is capped at max_step. False, with the
+// result set, when no finite step could be made.
+bool ConstrainedNewtonSolver::Impl::direction(ConstrainedRun& run,
+                                              const Eigen::SparseMatrix<double>& H,
+                                              const Eigen::VectorXd& g0, double c,
+                                              ConstrainedStep& step) {
+  const Eigen::VectorXd& a = constraint.coefficients();
+  ConstrainedNewtonResult& result = run.result;
+  run.report.shifted = false;
+  run.report.shift = 0.0;
+  const FactorizationStatus status = full.factorize(H);
+  if (status == FactorizationStatus::NonFinite) {
+    result.status = SolveStatus::NonFinite;
+    result.reason = "the Hessian is not finite";
+    return false;
+  }
+  if (status == FactorizationStatus::PositiveDefinite) {
+    // Schur complement: two solves with the one factorization.
+    const Eigen::VectorXd x1 = full.solve(g0), x2 = full.solve(a);
+    step.tau = (c + a.dot(x1)) / a.dot(x2);
+    step.p = step.tau * x2 - x1;
+    ++result.schur_iterations;
+  } else {
+    const ShiftedFactorization f = factorize_with_shift(
+        reduced, constraint.reduce(H), constraint.reduce_diagonal(run.mass), options.shift);
+    if (f.status != FactorizationStatus::PositiveDefinite) {
+      result.status = f.status == FactorizationStatus::NonFinite ? SolveStatus::NonFinite
+                                                                 : SolveStatus::LinearSolverFailed;
+      result.reason = "the constrained Hessian could not be factorized even with the largest shift";
+      return false;
+    }
+    // Restore the constraint by the minimal shift d0, then Newton on the
+    // plane with the gradient extrapolated there: g0 + H d0.
+    const Eigen::VectorXd d0 = (c / a.squaredNorm()) * a;
+    const Eigen::VectorXd g_shifted = c != 0.0 ? Eigen::VectorXd(g0 + H * d0) : g0;
+    step.p = constraint.expand(-reduced.solve(constraint.restrict(g_shifted))) + d0;
+    step.tau = constraint.multiplier(g0);
+    run.report.shifted = f.shifted;
+    run.report.shift = f.shift;
+    ++result.null_space_iterations;
+  }
+  const double length = step.p.norm();
+  if (!std::isfinite(length)) {
+    result.status = SolveStatus::NonFinite;
+    result.reason = "the Newton step is not finite";
+    return false;
+  }
+  if (length > options.max_step) step.p *= options.max_step / length;
+  return true;
+}
+
+// Armijo backtracking from q0 along p (descent_step.hpp) on the exact
+// penalty merit
+//   phi(q) = E(q) + mu |a . q - A|:
+// the energy itself on the constraint's plane (where both steps descend:
+// g . p = -r^T K^-1 r < 0), and from a start off the plane, where the
+// energy may have to rise to restore the constraint, a merit that the step
+// decreases when mu > max(|tau|, g . p / |c|) (here twice that): its
+// slope is g . p - mu |c| < 0. Accepts phi(q0 + t p) <= phi(q0) + c1 t
+// min(slope, 0) (+ round-off slack), or, in the end game, the full step
+// when it lowers |diag(w) (g - tau a)|. False, with the result set and the
+// objective back at q0, when no step was accepted.
+bool ConstrainedNewtonSolver::Impl::line_search(ConstrainedRun& run, const Eigen::VectorXd& q0,
+                                                double e0, const Eigen::VectorXd& g0, double c,
+                                                const Eigen::VectorXd& w,
+                                                const ConstrainedStep& step) {
+  DescentStepOptions descent;
+  descent.max_step = options.max_step;
+  const double r0 = (w.array() * constraint.projected(g0).array()).matrix().norm();
+  DescentStepResult accepted;
+  try {
+    const double gp = g0.dot(step.p);
+    const double mu =
+        c == 0.0 ? 0.0 : 2.0 * std::max(std::abs(step.tau), std::max(gp, 0.0) / std::abs(c));
+    BacktrackingMerit penalty;
+    penalty.merit = [&](double energy, const Eigen::VectorXd& q) {
+      return energy + mu * std::abs(constraint.value(q) - run.target);
+    };
+    penalty.phi0 = penalty.merit(e0, q0);
+    penalty.slope = std::min(gp - mu * std::abs(c), 0.0);
+    penalty.progress = [&] {
+      const Eigen::VectorXd g = evaluator.gradient();
+      return g.allFinite() && (w.array() * constraint.projected(g).array()).matrix().norm() < r0;
+    };
+    accepted = backtrack_on_energy(evaluator, q0, e0, step.p, penalty, descent);
+  } catch (...) {
+    objective.set(q0);
+    throw;
+  }
+  if (accepted.accepted) return true;
+  objective.set(q0);
+  evaluator.sync();
+  fail_line_search(accepted, evaluator, "constrained Newton step", run.result);
+  return false;
+}
+
+// Reports the accepted step from q0 and updates the stagnation tests.
+void ConstrainedNewtonSolver::Impl::record_step(ConstrainedRun& run, const Eigen::VectorXd& q0,
+                                                double e0, const Eigen::VectorXd& w) {
+  NewtonReport& report = run.report;
+  const Eigen::VectorXd q = objective.get();
+  report.iteration = run.iteration + 1;
+  report.energy = objective.energy();
+  report.gradient_measure = measure(w, evaluator.gradient());
+  report.step_norm = (q - q0).lpNorm<Eigen::Infinity>();
+  report.energy_line_search = true;
+  run.stagnant = scaled_step_length(q, q0) <= options.scaled_step_tolerance;
+  if (report.gradient_measure < 0.5 * run.best_measure) {
+    run.best_measure = report.gradient_measure;
+    run.stalled = 0;
+  } else if (std::abs(report.energy - e0) <= 1e-13 * std::abs(e0)) {
+    ++run.stalled;
+  }
+}
+
+// After the iterations ended: the stability test, and at a converged but
+// unstable state (a saddle) the escape along negative curvature. True when
+// the solver escaped and iterates on.
+bool ConstrainedNewtonSolver::Impl::escape(ConstrainedRun& run) {
+  ConstrainedNewtonResult& result = run.result;
+  if (result.status != SolveStatus::NonFinite)
+    result.stable = is_positive_definite(reduced, constraint.reduce(objective.hessian()));
+  if (!result.converged() || result.stable || result.saddle_escapes >= run.max_saddle_escapes)
+    return false;
+  // A saddle: leave it downhill along negative curvature, then iterate on.
+  const Clock::time_point escape_start = Clock::now();
+  const long factorizations_at_escape = factorizations();
+  const Eigen::VectorXd q_saddle = objective.get();
+  if (!escape_saddle(run.mass)) return false;
+  ++result.saddle_escapes;
+  ++run.iteration;
+  evaluator.sync();
+  NewtonReport& report = run.report;
+  report.iteration = run.iteration;
+  report.energy = objective.energy();
+  report.gradient_measure = measure(objective.gradient_weights(), evaluator.gradient());
+  report.step_norm = (objective.get() - q_saddle).lpNorm<Eigen::Infinity>();
+  report.shifted = true;
+  report.factorizations = factorizations() - factorizations_at_escape;
+  report.seconds = seconds_since(escape_start);
+  if (run.callbacks.on_iteration) run.callbacks.on_iteration(report);
+  run.stagnant = false;
+  run.best_measure = report.gradient_measure;
+  run.stalled = 0;
+  result.stable = false;
+  return true;
+}
+
+void ConstrainedNewtonSolver::Impl::finish(ConstrainedRun& run) {
+  const Eigen::VectorXd g = objective.gradient();
+  run.result.multiplier = constraint.multiplier(g);
+  run.result.constraint_residual = run.target - constraint.value(objective.get());
+  run.result.factorizations = factorizations() - run.factorizations_at_start;
+}
+
+bool ConstrainedNewtonSolver::Impl::escape_saddle(const Eigen::VectorXd& mass) {
+  const Eigen::SparseMatrix<double> Hz = constraint.reduce(objective.hessian());
+  const Eigen::VectorXd Mz = constraint.reduce_diagonal(mass);
+  const ShiftedFactorization f = factorize_with_shift(reduced, Hz, Mz, options.shift);
   if (f.status != FactorizationStatus::PositiveDefinite) return false;
   // Inverse iteration with Hz + shift Mz: converges to the eigenvector of
   // the most negative eigenvalue of (Hz, Mz), the one nearest -shift.
@@ -319,23 +331,23 @@ bool ConstrainedNewtonSolver::escape_saddle(const Eigen::VectorXd& mass) {
   Eigen::VectorXd x(Hz.rows());
   for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = uniform(rng);
   for (int k = 0; k < 30; ++k) {
-    x = s.reduced.solve(Eigen::VectorXd(Mz.cwiseProduct(x)));
+    x = reduced.solve(Eigen::VectorXd(Mz.cwiseProduct(x)));
     x /= std::sqrt(x.dot(Mz.cwiseProduct(x)));
   }
   if (!x.allFinite() || !(x.dot(Hz * x) < 0.0)) return false;
-  Eigen::VectorXd d = constraint_.expand(x);
+  Eigen::VectorXd d = constraint.expand(x);
   Eigen::Index largest = 0;
   d.cwiseAbs().maxCoeff(&largest);
   d /= d[largest];  // largest entry +1: a deterministic side
-  const Eigen::VectorXd q0 = objective_.get();
-  const double e0 = objective_.energy();
+  const Eigen::VectorXd q0 = objective.get();
+  const double e0 = objective.energy();
   double best_t = 0.0, best_e = e0;
   for (double t = 1e-3 * std::max(1.0, q0.lpNorm<Eigen::Infinity>()), k = 0; k < 16;
        t *= 2.0, ++k) {
     double e = 0.0;
     try {
-      objective_.set(q0 + t * d);
-      e = objective_.energy();
+      objective.set(q0 + t * d);
+      e = objective.energy();
     } catch (const std::domain_error&) {
       break;
     }
@@ -347,7 +359,7 @@ bool ConstrainedNewtonSolver::escape_saddle(const Eigen::VectorXd& mass) {
       break;
     }
   }
-  objective_.set(q0 + best_t * d);
+  objective.set(q0 + best_t * d);
   return best_t > 0.0;
 }
 

@@ -45,7 +45,8 @@
 
 namespace xshell {
 
-struct ConstrainedNewtonResult : NewtonResult {
+// The common result (solve_result.hpp) and what the constraint adds.
+struct ConstrainedNewtonResult : SolveResult {
   double multiplier = 0.0;           // tau at the final state (least squares a.g / a.a)
   double constraint_residual = 0.0;  // A - a . q at the final state
   int schur_iterations = 0;          // iterations stepped by the Schur complement
@@ -86,7 +87,6 @@ class ConstrainedNewtonSolver {
 
  private:
   struct Impl;
-  bool escape_saddle(const Eigen::VectorXd& mass);
   Objective& objective_;
   const AverageConstraint& constraint_;
   NewtonOptions options_;

@@ -15,18 +15,6 @@
 
 namespace xshell {
 
-const char* to_string(DeploymentStatus status) {
-  switch (status) {
-    case DeploymentStatus::Completed:
-      return "completed";
-    case DeploymentStatus::StepFailed:
-      return "step failed";
-    case DeploymentStatus::Interrupted:
-      return "interrupted";
-  }
-  return "unknown";
-}
-
 namespace {
 
 // Step of the central difference in the prescribed angles (radians): the
@@ -36,13 +24,8 @@ constexpr double kTorqueStep = 1e-5;
 
 // The outcome of one solve, whichever solver ran it.
 struct Attempt {
-  bool converged = false;
-  bool interrupted = false;
-  bool stable = false;
-  long iterations = 0;
-  double gradient_measure = 0.0;
-  double torque = 0.0;  // average actuation only
-  std::string reason;
+  SolveResult solve;
+  double torque = 0.0;  // dE/dA or dE/dtheta
 };
 
 // Deploys one problem: the state of a run of deploy().
@@ -110,7 +93,7 @@ class Deployer {
         increment = std::min(2.0 * increment, nominal);
         continue;
       }
-      if (result_.status == DeploymentStatus::Interrupted) break;
+      if (result_.status == SolveStatus::Interrupted) break;
       if (halvings >= options_.max_halvings) {
         char text[160];
         std::snprintf(text, sizeof text,
@@ -124,7 +107,7 @@ class Deployer {
       increment = 0.5 * (target - s);
     }
     if (grid == plan_.steps) {
-      result_.status = DeploymentStatus::Completed;
+      result_.status = SolveStatus::Converged;
       result_.reason = "reached the target in " + std::to_string(step) + " steps";
     }
     return finish(start);
@@ -177,41 +160,15 @@ class Deployer {
     if (constrained_newton_ && options_.solver == DeploymentSolver::Newton) {
       const ConstrainedNewtonResult r =
           constrained_newton_->solve(average_target(s), newton_callbacks);
-      a = {r.converged(),
-           r.status == NewtonStatus::Interrupted,
-           r.stable,
-           r.iterations,
-           r.gradient_measure,
-           r.multiplier,
-           r.reason};
+      a = {r, r.multiplier};
     } else if (newton_) {
-      const NewtonResult r = newton_->solve(newton_callbacks);
-      a = {r.converged(),
-           r.status == NewtonStatus::Interrupted,
-           r.stable,
-           r.iterations,
-           r.gradient_measure,
-           0.0,
-           r.reason};
+      a.solve = newton_->solve(newton_callbacks);
     } else if (constraint_) {
       ConstrainedObjective reduced(objective_, *constraint_);
-      const DynamicsResult r = solve_dynamics(reduced, options_.dynamics, dynamics_callbacks);
-      a = {r.converged(),
-           r.status == DynamicsStatus::Interrupted,
-           r.stable,
-           r.steps,
-           r.gradient_measure,
-           reduced.multiplier(),
-           r.reason};
+      a.solve = solve_dynamics(reduced, options_.dynamics, dynamics_callbacks);
+      a.torque = reduced.multiplier();
     } else {
-      const DynamicsResult r = solve_dynamics(objective_, options_.dynamics, dynamics_callbacks);
-      a = {r.converged(),
-           r.status == DynamicsStatus::Interrupted,
-           r.stable,
-           r.steps,
-           r.gradient_measure,
-           0.0,
-           r.reason};
+      a.solve = solve_dynamics(objective_, options_.dynamics, dynamics_callbacks);
     }
     if (!constraint_) a.torque = prescribed_torque();
     return a;
@@ -251,20 +208,21 @@ class Deployer {
       a = solve(s);
     } catch (const std::domain_error& e) {
       a = Attempt{};
-      a.reason = e.what();
+      a.solve.reason = e.what();
     }
-    result_.iterations += a.iterations;
-    if (!a.converged) {
+    result_.iterations += a.solve.iterations;
+    result_.factorizations += a.solve.factorizations;
+    if (!a.solve.converged()) {
       problem_ = saved;
-      last_reason_ = a.reason;
-      if (a.interrupted) {
-        result_.status = DeploymentStatus::Interrupted;
+      last_reason_ = a.solve.reason;
+      if (a.solve.status == SolveStatus::Interrupted) {
+        result_.status = SolveStatus::Interrupted;
         result_.reason = "interrupted at step " + std::to_string(step);
       } else {
         ++result_.failed_attempts;
-        result_.status = DeploymentStatus::StepFailed;
+        result_.status = SolveStatus::StepFailed;
         if (step == 0)
-          result_.reason = "the start could not be brought to equilibrium: " + a.reason;
+          result_.reason = "the start could not be brought to equilibrium: " + a.solve.reason;
       }
       return false;
     }
@@ -274,9 +232,9 @@ class Deployer {
     row.average_angle = average_opening_angle(problem_.linkage());
     row.energy = problem_.energy();
     row.torque = a.torque;
-    row.iterations = a.iterations;
-    row.stable = a.stable;
-    row.gradient_measure = a.gradient_measure;
+    row.iterations = a.solve.iterations;
+    row.stable = a.solve.stable;
+    row.gradient_measure = a.solve.gradient_measure;
     row.halvings = halvings;
     row.seconds = earlier_seconds + seconds_since(start);
     result_.steps.push_back(row);
@@ -284,7 +242,17 @@ class Deployer {
     return true;
   }
 
+  // The final state: the last accepted step's, or the start's.
   DeploymentResult finish(Clock::time_point start) {
+    if (result_.steps.empty()) {
+      result_.energy = problem_.energy().total();
+      result_.gradient_measure = problem_.gradient_measure();
+    } else {
+      const DeploymentStep& last = result_.steps.back();
+      result_.energy = last.energy.total();
+      result_.gradient_measure = last.gradient_measure;
+      result_.stable = last.stable;
+    }
     result_.seconds = seconds_since(start);
     return std::move(result_);
   }

@@ -36,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "integrators/common/solve_result.hpp"
 #include "integrators/dynamics/ida_dynamics.hpp"
 #include "integrators/newton/newton.hpp"
 #include "linkage/statics_problem.hpp"
@@ -100,23 +101,19 @@ struct DeploymentCallbacks {
   const std::atomic<bool>* stop = nullptr;                       // checked by the solvers
 };
 
-enum class DeploymentStatus {
-  Completed,    // the target was reached, every step converged
-  StepFailed,   // a step failed even after max_halvings halvings
-  Interrupted,  // the stop flag was raised
-};
-
-const char* to_string(DeploymentStatus status);
-
-struct DeploymentResult {
-  DeploymentStatus status = DeploymentStatus::StepFailed;
-  std::string reason;                 // one line
+// The common result (solve_result.hpp) of the whole deployment and its
+// steps. status: Converged when the target was reached with every step
+// converged ("completed"), StepFailed when a step failed even after
+// max_halvings halvings, Interrupted when the stop flag was raised.
+// iterations: all solver iterations (or time steps), failed attempts
+// included; factorizations likewise (where the solver counts them); energy,
+// gradient_measure and stable: of the last accepted step (without one, the
+// start's energy and gradient measure, not stable).
+struct DeploymentResult : SolveResult {
+  DeploymentResult() { status = SolveStatus::StepFailed; }
   std::vector<DeploymentStep> steps;  // accepted steps, from step 0
-  long iterations = 0;                // all solver iterations, failed attempts included
   int failed_attempts = 0;
   double start_angle = 0.0;  // average opening angle before step 0
-  double seconds = 0.0;
-  bool completed() const { return status == DeploymentStatus::Completed; }
 };
 
 // Deploys `problem` from its current state. On failure or interruption the

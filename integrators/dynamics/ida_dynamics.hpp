@@ -49,6 +49,7 @@
 #include <string>
 
 #include "integrators/common/objective.hpp"
+#include "integrators/common/solve_result.hpp"
 #include "integrators/dynamics/ida_system.hpp"
 #include "integrators/linear_algebra/shifted_factorization.hpp"
 
@@ -198,19 +199,6 @@ struct DynamicsOptions {
   ShiftOptions shift;
 };
 
-enum class DynamicsStatus {
-  Converged,  // gradient and kinetic criteria met
-  MaxSteps,
-  LinearSolverFailed,  // K could not be factorized, or gave no finite correction, even for short
-                       // steps
-  IntegratorFailed,    // other IDA failures (error test, convergence, steps stagnating
-                       // below 1e-12 t), or invalid configurations
-  NonFinite,           // NaN/inf in the energy, gradient or Hessian
-  Interrupted,
-};
-
-const char* to_string(DynamicsStatus status);
-
 // One per accepted step, and one for the initial state (step 0).
 struct DynamicsReport {
   long step = 0;
@@ -227,29 +215,26 @@ struct DynamicsCallbacks {
   const std::atomic<bool>* stop = nullptr;             // optional; checked before each step
 };
 
-struct DynamicsResult {
-  DynamicsStatus status = DynamicsStatus::MaxSteps;
-  std::string reason;
-  long steps = 0;
-  double time = 0.0;
-  double gradient_measure = 0.0;
-  double energy = 0.0;
+// The common result (solve_result.hpp) and what the dynamics adds.
+// iterations counts the accepted time steps, the end game's included;
+// LinearSolverFailed: K could not be factorized, or gave no finite
+// correction, even for short steps; IntegratorFailed: other IDA failures
+// (error test, convergence, steps stagnating below 1e-12 t), or invalid
+// configurations. factorizations include the damping estimate's.
+struct DynamicsResult : SolveResult {
+  double time = 0.0;  // simulated time at the end
   double kinetic_energy = 0.0;
-  bool stable = false;             // unshifted LL^T of the final Hessian succeeded
   double damping = 0.0;            // c (or a) used
   double stiffness_damping = 0.0;  // b used (0 for mass-proportional damping)
   long residual_evaluations = 0;
   long error_test_failures = 0;
   long convergence_failures = 0;
-  long factorizations = 0;  // numeric Cholesky factorizations (incl. estimate and check)
   long rebases = 0;
   long refreshes = 0;          // damping refreshes
   long endgame_steps = 0;      // steps of infinite length (Newton) at the end
   long endgame_fallbacks = 0;  // end games that did not converge, after which the dynamics resumed
   long rejected_steps = 0;  // steps retried shorter: by dissipation_guard, or ending in an invalid
-                            // configuration (not counted in steps)
-  double seconds = 0.0;
-  bool converged() const { return status == DynamicsStatus::Converged; }
+                            // configuration (not counted in iterations)
 };
 
 // Integrates from the objective's current configuration, at rest or on the

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
 #include "integrators/dynamics/ida_endgame.hpp"
@@ -16,12 +15,6 @@
 namespace xshell {
 
 namespace {
-
-std::string scientific(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3e", value);
-  return text;
-}
 
 // A step shorter than this fraction of the simulated time means the
 // integrator is creeping towards a barrier (configurations it cannot
@@ -104,9 +97,9 @@ DynamicsResult DynamicsRun::solve() {
   start_on_slow_manifold();
   if (callbacks.on_step) callbacks.on_step(report);
   if (!std::isfinite(report.energy) || !std::isfinite(report.gradient_measure)) {
-    finish(DynamicsStatus::NonFinite, "energy or gradient not finite at the start");
+    finish(SolveStatus::NonFinite, "energy or gradient not finite at the start");
   } else if (report.gradient_measure <= options.stopping.gradient_tolerance) {
-    finish(DynamicsStatus::Converged, "in equilibrium at the start");
+    finish(SolveStatus::Converged, "in equilibrium at the start");
   } else {
     integrate();
   }
@@ -161,12 +154,12 @@ void DynamicsRun::create_integrator() {
 // the run is finished (result.status set), or the end game is due.
 bool DynamicsRun::advance() {
   if (callbacks.stop != nullptr && callbacks.stop->load()) {
-    finish(DynamicsStatus::Interrupted, "stop flag raised");
+    finish(SolveStatus::Interrupted, "stop flag raised");
     return false;
   }
-  if (result.steps >= options.stopping.max_steps) {
-    finish(DynamicsStatus::MaxSteps,
-           "no convergence in " + std::to_string(result.steps) + " steps");
+  if (result.iterations >= options.stopping.max_steps) {
+    finish(SolveStatus::IterationLimit,
+           "no convergence in " + std::to_string(result.iterations) + " steps");
     return false;
   }
   evaluator.clear_failures();
@@ -206,9 +199,9 @@ bool DynamicsRun::take_step(double h) {
     return retry_shorter(
         h, "the objective rejects the accepted state (" + evaluator.last_message() + ")");
   }
-  ++result.steps;
+  ++result.iterations;
   IDAGetLastOrder(integrator->ida.get(), &report.order);
-  report.step = result.steps;
+  report.step = result.iterations;
   report.time = t;
   report.step_size = h;
   report.energy = step_energy;
@@ -219,7 +212,7 @@ bool DynamicsRun::take_step(double h) {
       total - last_total > options.steps.dissipation_guard * std::max(total0 - last_total, 0.0) +
                                1e-12 * std::abs(report.energy)) {
     // E + K rose: the step is taken again (see StepControlOptions).
-    --result.steps;
+    --result.iterations;
     return retry_shorter(h, "E + K rises");
   }
   if (callbacks.on_step) callbacks.on_step(report);
@@ -265,14 +258,14 @@ void DynamicsRun::on_integrator_failure(int flag) {
 // values or no longer advances time.
 bool DynamicsRun::step_is_sound(double h) {
   if (!std::isfinite(report.energy) || !std::isfinite(report.gradient_measure) || !y.allFinite()) {
-    finish(DynamicsStatus::NonFinite,
-           "non-finite state after step " + std::to_string(result.steps));
+    finish(SolveStatus::NonFinite,
+           "non-finite state after step " + std::to_string(result.iterations));
     y = last_good;
     return false;
   }
   if (h <= kStagnantStepRatio * t) {
     const bool nonfinite = evaluator.last_failure() == EvaluationFailure::NonFinite;
-    finish(nonfinite ? DynamicsStatus::NonFinite : DynamicsStatus::IntegratorFailed,
+    finish(nonfinite ? SolveStatus::NonFinite : SolveStatus::IntegratorFailed,
            "step size " + scientific(h) + " stagnant at t = " + scientific(t) +
                (evaluator.last_message().empty() ? "" : ": " + evaluator.last_message()));
     return false;
@@ -287,7 +280,7 @@ bool DynamicsRun::stops_here() {
   const double energy_scale = std::max(std::abs(energy0 - report.energy), std::abs(report.energy));
   const bool at_rest = report.kinetic_energy <= options.stopping.kinetic_tolerance * energy_scale;
   if (report.gradient_measure <= options.stopping.gradient_tolerance && at_rest) {
-    finish(DynamicsStatus::Converged, "gradient and kinetic energy below tolerance");
+    finish(SolveStatus::Converged, "gradient and kinetic energy below tolerance");
     return true;
   }
   if (endgame_on && options.endgame.gradient_factor > 0.0 && at_rest &&
@@ -322,9 +315,9 @@ void DynamicsRun::rebase_if_due(double h) {
                    ((y.head(n) - rebased_at).cwiseQuotient(scales).cwiseAbs().maxCoeff() >
                     options.rebase.distance);
   const bool due =
-      options.rebase.interval > 0 && result.steps - last_rebase >= options.rebase.interval;
+      options.rebase.interval > 0 && result.iterations - last_rebase >= options.rebase.interval;
   if (!(far || due)) return;
-  last_rebase = result.steps;
+  last_rebase = result.iterations;
   Eigen::VectorXd v = second_order ? Eigen::VectorXd(y.tail(n)) : Eigen::VectorXd();
   objective.rebase(second_order ? &v : nullptr);
   evaluator.sync();
@@ -397,13 +390,13 @@ bool DynamicsRun::retry_shorter(double h, const std::string& why) {
   y = last_good;
   t = last_good_t;
   if (0.5 * h <= kStagnantStepRatio * t) {  // the objective is moved to y after the stepping
-    finish(DynamicsStatus::IntegratorFailed,
+    finish(SolveStatus::IntegratorFailed,
            why + " even for steps of " + scientific(0.5 * h) + " at t = " + scientific(t));
     return false;
   }
   if (evaluator.move_to(y.data()) != 0) {
     evaluator.rethrow_if_fatal();
-    finish(DynamicsStatus::IntegratorFailed,
+    finish(SolveStatus::IntegratorFailed,
            "the objective rejected an accepted state: " + evaluator.last_message());
     return false;
   }
@@ -415,19 +408,20 @@ bool DynamicsRun::retry_shorter(double h, const std::string& why) {
 // when it did not converge and the dynamics resume; false when the run is
 // finished.
 bool DynamicsRun::play_endgame() {
-  const int max_iterations = static_cast<int>(std::min<long>(
-      options.endgame.iterations, std::max<long>(1, options.stopping.max_steps - result.steps)));
+  const int max_iterations = static_cast<int>(
+      std::min<long>(options.endgame.iterations,
+                     std::max<long>(1, options.stopping.max_steps - result.iterations)));
   if (second_order) y.tail(n).setZero();  // the infinite step ends at rest
   const NewtonResult polished =
-      run_endgame(objective, options, max_iterations, callbacks, result.steps, report);
-  result.steps += polished.iterations;
+      run_endgame(objective, options, max_iterations, callbacks, result.iterations, report);
+  result.iterations += polished.iterations;
   result.endgame_steps += polished.iterations;
   extra_factorizations += polished.factorizations;
   evaluator.sync();
   y.head(n) = objective.get();
   weights = objective.gradient_weights();
-  if (polished.status == NewtonStatus::MaxIterations && result.steps < options.stopping.max_steps &&
-      options.endgame.growth > 1.0) {
+  if (polished.status == SolveStatus::IterationLimit &&
+      result.iterations < options.stopping.max_steps && options.endgame.growth > 1.0) {
     // Handed over too early (far from the equilibrium, in a region
     // where H happens to be positive definite): the dynamics go on at
     // rest from where the end game stopped, its energy lower than at
@@ -447,7 +441,7 @@ bool DynamicsRun::play_endgame() {
   return false;
 }
 
-void DynamicsRun::finish(DynamicsStatus status, std::string reason) {
+void DynamicsRun::finish(SolveStatus status, std::string reason) {
   result.status = status;
   result.reason = std::move(reason);
 }
@@ -458,7 +452,7 @@ DynamicsResult DynamicsRun::final_result() {
   result.energy = objective.energy();
   result.gradient_measure = weighted_max_norm(weights, evaluator.gradient());
   result.kinetic_energy = kinetic(y);
-  if (result.status != DynamicsStatus::NonFinite)
+  if (result.status != SolveStatus::NonFinite)
     result.stable = is_positive_definite(estimator, objective.hessian());
   result.factorizations = estimator.stats().factorizations +
                           system.cholesky().stats().factorizations + extra_factorizations;

@@ -57,7 +57,7 @@ class DynamicsRun {
   bool retry_shorter(double h, const std::string& why);
   // The end.
   bool play_endgame();
-  void finish(DynamicsStatus status, std::string reason);
+  void finish(SolveStatus status, std::string reason);
   DynamicsResult final_result();
   // Helpers.
   double kinetic(const Eigen::VectorXd& state) const;

@@ -23,25 +23,23 @@ NewtonResult run_endgame(Objective& objective, const DynamicsOptions& options, i
   return solve_newton(objective, newton, forward);
 }
 
-DynamicsStatus endgame_status(const NewtonResult& polished) {
+SolveStatus endgame_status(const NewtonResult& polished) {
   switch (polished.status) {
-    case NewtonStatus::Converged:
-      return DynamicsStatus::Converged;
-    case NewtonStatus::Interrupted:
-      return DynamicsStatus::Interrupted;
-    case NewtonStatus::NonFinite:
-      return DynamicsStatus::NonFinite;
+    case SolveStatus::Converged:
+    case SolveStatus::Interrupted:
+    case SolveStatus::NonFinite:
+      return polished.status;
     default:
-      return DynamicsStatus::IntegratorFailed;
+      return SolveStatus::IntegratorFailed;
   }
 }
 
 std::string endgame_reason(const NewtonResult& polished) {
   switch (polished.status) {
-    case NewtonStatus::Converged:
+    case SolveStatus::Converged:
       return "gradient below tolerance, at rest (end game: " + std::to_string(polished.iterations) +
              " steps of infinite length)";
-    case NewtonStatus::Interrupted:
+    case SolveStatus::Interrupted:
       return "stop flag raised";
     default:
       return "end game: " + polished.reason;

@@ -19,8 +19,10 @@ NewtonResult run_endgame(Objective& objective, const DynamicsOptions& options, i
                          const DynamicsCallbacks& callbacks, long steps_before,
                          DynamicsReport& report);
 
-// The run's status and reason after an end game that ended the run.
-DynamicsStatus endgame_status(const NewtonResult& polished);
+// The run's status and reason after an end game that ended the run: the end
+// game's status when it converged, was interrupted or met non-finite
+// values, else IntegratorFailed.
+SolveStatus endgame_status(const NewtonResult& polished);
 std::string endgame_reason(const NewtonResult& polished);
 
 }  // namespace xshell

@@ -70,20 +70,20 @@ void classify_failure(int flag, const ObjectiveEvaluator& evaluator, const Dynam
       break;
   }
   if (nonfinite) {
-    result.status = DynamicsStatus::NonFinite;
+    result.status = SolveStatus::NonFinite;
     result.reason = name + ": " + evaluator.last_message();
   } else if (flag == IDA_LSETUP_FAIL || system.last_setup_failed()) {
-    result.status = DynamicsStatus::LinearSolverFailed;
+    result.status = SolveStatus::LinearSolverFailed;
     result.reason = name +
                     ": the implicit step's matrix K = H + c_j C + (c_j^2 + a c_j) M (H + c_j C " +
                     "in first order) was not positive definite even for short steps";
   } else if (flag == IDA_LSOLVE_FAIL) {
-    result.status = DynamicsStatus::LinearSolverFailed;
+    result.status = SolveStatus::LinearSolverFailed;
     result.reason = name +
                     ": the linear solve with K gave no finite correction even for short steps " +
                     "(K numerically singular)";
   } else {
-    result.status = DynamicsStatus::IntegratorFailed;
+    result.status = SolveStatus::IntegratorFailed;
     result.reason = name + (invalid ? ": " + evaluator.last_message() : ": " + message);
   }
 }

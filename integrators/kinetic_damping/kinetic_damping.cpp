@@ -13,22 +13,6 @@
 
 namespace xshell {
 
-const char* to_string(KineticDampingStatus status) {
-  switch (status) {
-    case KineticDampingStatus::Converged:
-      return "converged";
-    case KineticDampingStatus::MaxIterations:
-      return "maximum number of iterations reached";
-    case KineticDampingStatus::InvalidConfiguration:
-      return "invalid configurations";
-    case KineticDampingStatus::NonFinite:
-      return "non-finite values";
-    case KineticDampingStatus::Interrupted:
-      return "interrupted";
-  }
-  return "unknown";
-}
-
 namespace {
 
 constexpr double kTimeStep = 1.0;  // dt: the masses scale with dt^2, so its value is immaterial
@@ -82,7 +66,7 @@ class KineticDampingRun {
   bool reject(const std::string& failure, Clock::time_point iteration_start);
   void refresh_masses(long iteration);
   void come_to_rest();
-  void finish(KineticDampingStatus status, std::string reason);
+  void finish(SolveStatus status, std::string reason);
   KineticDampingResult final_result();
 
   Objective& objective;                      // moved along the run; left at the accepted state
@@ -134,9 +118,9 @@ KineticDampingRun::KineticDampingRun(Objective& target, const KineticDampingOpti
 KineticDampingResult KineticDampingRun::solve() {
   if (callbacks.on_iteration) callbacks.on_iteration(report);
   if (!std::isfinite(energy) || !std::isfinite(report.gradient_measure)) {
-    finish(KineticDampingStatus::NonFinite, "energy or gradient not finite at the start");
+    finish(SolveStatus::NonFinite, "energy or gradient not finite at the start");
   } else if (report.gradient_measure <= options.gradient_tolerance) {
-    finish(KineticDampingStatus::Converged, "in equilibrium at the start");
+    finish(SolveStatus::Converged, "in equilibrium at the start");
   } else {
     refresh_masses(0);
     while (iterate()) {
@@ -149,11 +133,11 @@ KineticDampingResult KineticDampingRun::solve() {
 // finished (result.status set).
 bool KineticDampingRun::iterate() {
   if (callbacks.stop != nullptr && callbacks.stop->load()) {
-    finish(KineticDampingStatus::Interrupted, "stop flag raised");
+    finish(SolveStatus::Interrupted, "stop flag raised");
     return false;
   }
   if (result.iterations >= options.max_iterations) {
-    finish(KineticDampingStatus::MaxIterations,
+    finish(SolveStatus::IterationLimit,
            "no convergence in " + std::to_string(result.iterations) + " iterations");
     return false;
   }
@@ -184,7 +168,7 @@ bool KineticDampingRun::iterate() {
   const double energy_scale = std::max(std::abs(energy0 - energy), std::abs(energy));
   if (report.gradient_measure <= options.gradient_tolerance &&
       report.kinetic_energy <= options.kinetic_tolerance * energy_scale) {
-    finish(KineticDampingStatus::Converged, "gradient and kinetic energy below tolerance");
+    finish(SolveStatus::Converged, "gradient and kinetic energy below tolerance");
     return false;
   }
   return true;
@@ -232,7 +216,7 @@ KineticDampingRun::StepOutcome KineticDampingRun::take_step(long iteration,
   if (rebased) {  // q is expressed in the old unknowns: no way back
     energy = accepted_energy;
     gradient = std::move(next_gradient);
-    finish(KineticDampingStatus::NonFinite,
+    finish(SolveStatus::NonFinite,
            "non-finite gradient after iteration " + std::to_string(iteration));
     return StepOutcome::Finished;
   }
@@ -314,7 +298,7 @@ bool KineticDampingRun::reject(const std::string& failure, Clock::time_point ite
   report.rejected = true;
   if (++rejected_since_peak > options.max_rejected_steps) {
     const bool invalid = failure.rfind("non-finite", 0) != 0;
-    finish(invalid ? KineticDampingStatus::InvalidConfiguration : KineticDampingStatus::NonFinite,
+    finish(invalid ? SolveStatus::InvalidConfiguration : SolveStatus::NonFinite,
            std::to_string(rejected_since_peak) +
                " steps rejected without a kinetic-energy peak between: " + failure);
     report.energy = energy;
@@ -342,7 +326,7 @@ void KineticDampingRun::come_to_rest() {
   samples = 0;
 }
 
-void KineticDampingRun::finish(KineticDampingStatus status, std::string reason) {
+void KineticDampingRun::finish(SolveStatus status, std::string reason) {
   result.status = status;
   result.reason = std::move(reason);
 }
@@ -353,7 +337,7 @@ KineticDampingResult KineticDampingRun::final_result() {
   result.energy = energy;
   result.gradient_measure = weighted_max_norm(weights, gradient);
   result.kinetic_energy = at_rest ? 0.0 : ke_last;
-  if (result.status != KineticDampingStatus::NonFinite) {
+  if (result.status != SolveStatus::NonFinite) {
     CholeskySolver cholesky;
     result.stable = is_positive_definite(cholesky, objective.hessian());
     result.factorizations = cholesky.stats().factorizations;
@@ -385,7 +369,7 @@ KineticDampingResult solve_kinetic_damping(Objective& objective,
   if (objective.size() == 0) {
     KineticDampingResult result;
     result.mass_safety = options.mass_safety;
-    result.status = KineticDampingStatus::Converged;
+    result.status = SolveStatus::Converged;
     result.reason = "no free unknowns";
     result.energy = objective.energy();
     result.stable = true;

@@ -50,6 +50,7 @@
 #include <string>
 
 #include "integrators/common/objective.hpp"
+#include "integrators/common/solve_result.hpp"
 
 namespace xshell {
 
@@ -121,16 +122,6 @@ struct KineticDampingOptions {
   int max_rejected_steps = 30;
 };
 
-enum class KineticDampingStatus {
-  Converged,             // gradient and kinetic criteria met
-  MaxIterations,         //
-  InvalidConfiguration,  // steps kept leaving the valid configurations, even with heavier masses
-  NonFinite,             // NaN/inf at the start, or steps kept producing them
-  Interrupted,           // the stop flag was raised
-};
-
-const char* to_string(KineticDampingStatus status);
-
 // One per iteration (leapfrog step), and one for the initial state (0).
 struct KineticDampingReport {
   long iteration = 0;
@@ -150,10 +141,12 @@ struct KineticDampingCallbacks {
   const std::atomic<bool>* stop = nullptr;  // optional; checked before each iteration
 };
 
-struct KineticDampingResult {
-  KineticDampingStatus status = KineticDampingStatus::MaxIterations;
-  std::string reason;  // one line
-  long iterations = 0;
+// The common result (solve_result.hpp) and what kinetic damping adds.
+// iterations counts leapfrog steps; InvalidConfiguration: steps kept
+// leaving the valid configurations, even with heavier masses; NonFinite
+// also when steps kept producing NaN/inf. factorizations: the stability
+// check only.
+struct KineticDampingResult : SolveResult {
   long resets = 0;          // kinetic-energy peaks
   long energy_rises = 0;    // resets because E rose (see options)
   long rejected_steps = 0;  // steps rejected and retried with heavier masses
@@ -161,13 +154,7 @@ struct KineticDampingResult {
   long rebases = 0;
   long gradient_evaluations = 0;
   double mass_safety = 0.0;  // at the end (grows with mass_growth)
-  double gradient_measure = 0.0;
-  double energy = 0.0;
   double kinetic_energy = 0.0;
-  bool stable = false;      // unshifted LL^T of the final Hessian succeeded
-  long factorizations = 0;  // the stability check only
-  double seconds = 0.0;
-  bool converged() const { return status == KineticDampingStatus::Converged; }
 };
 
 // Relaxes from the objective's current configuration, at rest. On failure

@@ -15,8 +15,10 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 
 #include "integrators/common/objective_evaluator.hpp"
+#include "integrators/common/solve_result.hpp"
 #include "integrators/linear_algebra/cholesky_solver.hpp"
 
 namespace xshell {
@@ -54,5 +56,41 @@ DescentStepResult energy_descent_step(ObjectiveEvaluator& evaluator, CholeskySol
                                       const Eigen::VectorXd& q0, double e0,
                                       const Eigen::VectorXd& g0,
                                       const DescentStepOptions& options = {});
+
+// What the backtracking watches along a given direction (backtrack_on_energy).
+struct BacktrackingMerit {
+  // phi(E, q) at a trial point q of energy E; empty: phi = E.
+  std::function<double(double energy, const Eigen::VectorXd& q)> merit;
+  double phi0 = 0.0;   // phi at q0
+  double slope = 0.0;  // the slope in the Armijo test (< 0 for a descent direction)
+  // The end game's test, called at the full step (the objective there)
+  // when it changed the energy by less than endgame_energy_change |E0|:
+  // true when the scaled gradient fell, which accepts the step.
+  std::function<bool()> progress;
+};
+
+// The one Armijo backtracking of the energy line searches (this step's and
+// the constrained Newton's, constrained_newton.hpp): from q0 (the objective
+// there, energy e0) along p, the largest alpha = shrink^k with
+//   phi(q0 + alpha p) <= phi0 + c1 alpha slope + energy_noise |e0|,
+// or the full step by the end game's test. Trial points that are invalid
+// (set() threw std::domain_error) or of non-finite energy are recorded in
+// the evaluator and skipped. On success the objective is at the new point;
+// otherwise it is back at q0.
+DescentStepResult backtrack_on_energy(ObjectiveEvaluator& evaluator, const Eigen::VectorXd& q0,
+                                      double e0, const Eigen::VectorXd& p,
+                                      const BacktrackingMerit& merit,
+                                      const DescentStepOptions& options);
+
+// After a step that was not accepted, with the objective back at its start:
+// NonFinite when every trial point failed for non-finite values, else
+// LineSearchFailed; the reason names the evaluator's last failure when
+// every trial point failed, otherwise "no energy decrease along the <step>".
+void fail_line_search(const DescentStepResult& step, const ObjectiveEvaluator& evaluator,
+                      const char* step_name, SolveResult& result);
+
+// KINSOL's stagnation measure (KINScSNorm with unit scaling) of the step
+// q0 -> q: max_i |q_i - q0_i| / (1 + |q_i|).
+double scaled_step_length(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::VectorXd& q0);
 
 }  // namespace xshell

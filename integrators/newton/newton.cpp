@@ -4,7 +4,6 @@
 #include <kinsol/kinsol_ls.h>
 
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -12,43 +11,32 @@
 #include "integrators/common/wall_clock.hpp"
 #include "integrators/linear_algebra/sundials_handles.hpp"
 #include "integrators/newton/descent_step.hpp"
+#include "integrators/newton/iteration_checks.hpp"
 #include "integrators/newton/kinsol_system.hpp"
 
 namespace xshell {
 
-const char* to_string(NewtonStatus status) {
-  switch (status) {
-    case NewtonStatus::Converged:
-      return "converged";
-    case NewtonStatus::MaxIterations:
-      return "maximum number of iterations reached";
-    case NewtonStatus::LinearSolverFailed:
-      return "linear solver failed";
-    case NewtonStatus::LineSearchFailed:
-      return "line search failed";
-    case NewtonStatus::NonFinite:
-      return "non-finite values";
-    case NewtonStatus::Interrupted:
-      return "interrupted";
-  }
-  return "unknown";
-}
-
 namespace {
-
-std::string scientific(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3e", value);
-  return text;
-}
 
 // Smallest function scale passed to KINSOL, which requires positive scales;
 // an unknown of weight 0 is then (practically) ignored, as in our measure.
 constexpr double kMinimumScale = 1e-300;
 
+// The state of one solve() between its steps.
+struct NewtonRun {
+  explicit NewtonRun(const NewtonCallbacks& callbacks) : callbacks(callbacks) {}
+  const NewtonCallbacks& callbacks;
+  NewtonResult result;
+  NewtonReport report;               // of the last iteration (or the start)
+  bool stagnant = false;             // the last step was below the scaled step tolerance
+  long factorizations_at_start = 0;  // of the solver's CHOLMOD counter
+};
+
 }  // namespace
 
 struct NewtonSolver::Impl {
+  Objective& objective;
+  const NewtonOptions& options;
   // Declaration order = construction order; SUNDIALS objects after the context.
   SunContext context;
   ObjectiveEvaluator evaluator;
@@ -60,7 +48,10 @@ struct NewtonSolver::Impl {
   std::string last_message;
 
   Impl(Objective& objective, const NewtonOptions& options)
-      : evaluator(objective), system(evaluator, options.shift) {
+      : objective(objective),
+        options(options),
+        evaluator(objective),
+        system(evaluator, options.shift) {
     const Eigen::Index n = objective.size();
     u = make_serial_vector(n, context);
     u_scale = make_serial_vector(n, context);
@@ -86,6 +77,17 @@ struct NewtonSolver::Impl {
     check_sundials(KINSetScaledStepTol(k, options.scaled_step_tolerance), "KINSetScaledStepTol");
     check_sundials(KINSetMaxNewtonStep(k, options.max_step), "KINSetMaxNewtonStep");
   }
+
+  long factorizations() { return system.cholesky().stats().factorizations; }
+  void start(NewtonRun& run);
+  bool finished(int iteration, NewtonRun& run);
+  bool iterate(int iteration, NewtonRun& run);
+  int kinsol_step(const Eigen::VectorXd& q0);
+  bool energy_step(const Eigen::VectorXd& q0, NewtonRun& run, double& energy);
+  bool accept_step(int iteration, const Eigen::VectorXd& q0, double energy, NewtonRun& run);
+  void restore(const Eigen::VectorXd& q0);
+  void rethrow_if_fatal(const Eigen::VectorXd& q0);
+  void finish(NewtonRun& run);
 };
 
 NewtonSolver::NewtonSolver(Objective& objective, NewtonOptions options)
@@ -111,10 +113,10 @@ void classify_failure(int flag, const ObjectiveEvaluator& evaluator, const Newto
     case KIN_LSOLVE_FAIL:
     case KIN_LINSOLV_NO_RECOVERY:
       if (nonfinite) {
-        result.status = NewtonStatus::NonFinite;
+        result.status = SolveStatus::NonFinite;
         result.reason = "linear solver setup: " + detail;
       } else {
-        result.status = NewtonStatus::LinearSolverFailed;
+        result.status = SolveStatus::LinearSolverFailed;
         result.reason = system.setup_failed()
                             ? "the Hessian could not be factorized even with the largest shift"
                             : "linear solver failed: " + message;
@@ -123,14 +125,14 @@ void classify_failure(int flag, const ObjectiveEvaluator& evaluator, const Newto
     case KIN_SYSFUNC_FAIL:
     case KIN_FIRST_SYSFUNC_ERR:
     case KIN_REPTD_SYSFUNC_ERR:
-      result.status = nonfinite ? NewtonStatus::NonFinite : NewtonStatus::LineSearchFailed;
+      result.status = nonfinite ? SolveStatus::NonFinite : SolveStatus::LineSearchFailed;
       result.reason = "the objective failed at every trial point: " + detail;
       return;
     case KIN_LINESEARCH_NONCONV:
     case KIN_LINESEARCH_BCFAIL:
     case KIN_STEP_LT_STPTOL:
     case KIN_MXNEWT_5X_EXCEEDED:
-      result.status = NewtonStatus::LineSearchFailed;
+      result.status = SolveStatus::LineSearchFailed;
       result.reason = "KINSOL: " + kinsol_flag_name(flag) +
                       (system.any_shift() ? " after a shifted (indefinite Hessian) step" : "");
       return;
@@ -143,171 +145,174 @@ void classify_failure(int flag, const ObjectiveEvaluator& evaluator, const Newto
 
 NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
   const Clock::time_point start = Clock::now();
-  NewtonResult result;
+  NewtonRun run(callbacks);
   if (!impl_) {  // no unknowns: trivially in equilibrium
-    result.status = NewtonStatus::Converged;
-    result.reason = "no free unknowns";
-    result.energy = objective_.energy();
-    result.stable = true;
-    return result;
+    run.result.status = SolveStatus::Converged;
+    run.result.reason = "no free unknowns";
+    run.result.energy = objective_.energy();
+    run.result.stable = true;
+    return run.result;
   }
-  Impl& s = *impl_;
-  const long factorizations_before = s.system.cholesky().stats().factorizations;
-  auto total_factorizations = [&] {
-    return s.system.cholesky().stats().factorizations - factorizations_before;
-  };
-  // Every iteration starts right after a rebase: here, and after each step
-  // (so that the gradient of the rebased state serves both the convergence
-  // test and the next iteration).
-  objective_.rebase();
-  s.evaluator.sync();
-  s.evaluator.clear_failures();
-  s.system.prepare_hessian();
-  s.system.set_mass(objective_.mass());
-  s.system.set_deferral(options_.line_search == LineSearch::Kinsol ? NewtonSystem::Deferral::Never
-                        : options_.line_search == LineSearch::Energy
-                            ? NewtonSystem::Deferral::Always
-                            : NewtonSystem::Deferral::ShiftedSteps);
-  bool stagnant = false;  // the last step was below the scaled step tolerance
+  impl_->start(run);
+  run.result.setup_seconds = seconds_since(start);
+  for (int iteration = 0; !impl_->finished(iteration, run); ++iteration)
+    if (!impl_->iterate(iteration, run)) break;
+  impl_->finish(run);
+  run.result.seconds = seconds_since(start);
+  return run.result;
+}
+
+// Every iteration starts right after a rebase: here, and after each step
+// (so that the gradient of the rebased state serves both the convergence
+// test and the next iteration). Reports the start as iteration 0.
+void NewtonSolver::Impl::start(NewtonRun& run) {
+  run.factorizations_at_start = factorizations();
+  objective.rebase();
+  evaluator.sync();
+  evaluator.clear_failures();
+  system.prepare_hessian();
+  system.set_mass(objective.mass());
+  system.set_deferral(options.line_search == LineSearch::Kinsol ? NewtonSystem::Deferral::Never
+                      : options.line_search == LineSearch::Energy
+                          ? NewtonSystem::Deferral::Always
+                          : NewtonSystem::Deferral::ShiftedSteps);
+  run.report.energy = objective.energy();
+  run.report.gradient_measure =
+      weighted_max_norm(objective.gradient_weights(), evaluator.gradient());
+  if (run.callbacks.on_iteration) run.callbacks.on_iteration(run.report);
+}
+
+bool NewtonSolver::Impl::finished(int iteration, NewtonRun& run) {
+  IterationCheck check;
+  check.iterations = iteration;
+  check.energy = run.report.energy;
+  check.gradient_measure = run.report.gradient_measure;
+  check.converged = run.report.gradient_measure <= options.gradient_tolerance;
+  if (run.stagnant) check.stagnation = "the step fell below the scaled step tolerance";
+  return iteration_finished(check, run.callbacks.stop, options.max_iterations, run.result);
+}
+
+// One iteration from the current state: KINSOL's (with the Hessian's
+// factorization), the step (KINSOL's or the energy line search), then the
+// rebase and the report. Returns false, with the result set and the
+// objective at the last good state, when the solve must end.
+bool NewtonSolver::Impl::iterate(int iteration, NewtonRun& run) {
+  const Clock::time_point iteration_start = Clock::now();
+  const long factorizations_before = factorizations();
+  const Eigen::VectorXd q0 = evaluator.position();
+  const Eigen::VectorXd weights = objective.gradient_weights();
+  as_eigen(f_scale.get()) = weights.cwiseAbs().cwiseMax(kMinimumScale);
+  int flag = kinsol_step(q0);
+  run.report.energy_line_search = false;
+  double accepted_energy = 0.0;  // known after an energy line search step
+  if (flag == KIN_LSETUP_FAIL && system.deferred()) {
+    // The (possibly shifted) factorization is ready: step on the energy.
+    run.report.energy_line_search = true;
+    if (!energy_step(q0, run, accepted_energy)) return false;
+    flag = KIN_SUCCESS;
+  }
+  const bool accepted =
+      flag == KIN_SUCCESS || flag == KIN_MAXITER_REACHED || flag == KIN_INITIAL_GUESS_OK;
+  if (!accepted) {
+    restore(q0);
+    classify_failure(flag, evaluator, system, last_message, run.result);
+    return false;
+  }
+  if (!accept_step(iteration, q0, accepted_energy, run)) return false;
+  // The rebase moves nothing (the energy stays), but re-expresses q.
+  objective.rebase();
+  evaluator.sync();
+  system.prepare_hessian();
+  NewtonReport& report = run.report;
+  report.gradient_measure = weighted_max_norm(weights, evaluator.gradient());
+  report.factorizations = factorizations() - factorizations_before;
+  report.shifted = system.any_shift();
+  report.shift = system.max_shift();
+  report.seconds = seconds_since(iteration_start);
+  report.hessian_seconds = system.hessian_seconds();
+  report.factorization_seconds = system.factorization_seconds();
+  if (run.callbacks.on_iteration) run.callbacks.on_iteration(report);
+  return true;
+}
+
+// One KINSol call (one iteration) from q0; returns its flag.
+int NewtonSolver::Impl::kinsol_step(const Eigen::VectorXd& q0) {
+  as_eigen(u.get()) = q0;
+  system.reset_iteration_flags();
+  evaluator.clear_failures();
+  const int flag = KINSol(kinsol.get(), u.get(), KIN_LINESEARCH, u_scale.get(), f_scale.get());
+  rethrow_if_fatal(q0);
+  return flag;
+}
+
+// The step with the factorization that KINSOL's setup left: the energy line
+// search (descent_step.hpp). On success u holds the new point and `energy`
+// its energy; otherwise the result is set and the objective back at q0.
+bool NewtonSolver::Impl::energy_step(const Eigen::VectorXd& q0, NewtonRun& run, double& energy) {
+  evaluator.move_to(q0);
+  const Eigen::VectorXd g0 = evaluator.gradient();
   DescentStepOptions descent;
-  descent.max_step = options_.max_step;
-
-  NewtonReport report;
-  report.energy = objective_.energy();
-  report.gradient_measure =
-      weighted_max_norm(objective_.gradient_weights(), s.evaluator.gradient());
-  if (callbacks.on_iteration) callbacks.on_iteration(report);
-
-  for (int iteration = 0;; ++iteration) {
-    result.iterations = iteration;
-    result.energy = report.energy;
-    result.gradient_measure = report.gradient_measure;
-    if (!std::isfinite(report.energy) || !std::isfinite(report.gradient_measure)) {
-      result.status = NewtonStatus::NonFinite;
-      result.reason =
-          "energy or gradient not finite after " + std::to_string(iteration) + " iterations";
-      break;
-    }
-    if (report.gradient_measure <= options_.gradient_tolerance) {
-      result.status = NewtonStatus::Converged;
-      result.reason = "gradient measure " + scientific(report.gradient_measure) + " <= tolerance";
-      break;
-    }
-    if (stagnant) {
-      result.status = NewtonStatus::LineSearchFailed;
-      result.reason =
-          "stagnation: the step fell below the scaled step tolerance at gradient measure " +
-          scientific(report.gradient_measure) + " (round-off floor above the tolerance?)";
-      break;
-    }
-    if (callbacks.stop != nullptr && callbacks.stop->load()) {
-      result.status = NewtonStatus::Interrupted;
-      result.reason = "stop flag raised";
-      break;
-    }
-    if (iteration >= options_.max_iterations) {
-      result.status = NewtonStatus::MaxIterations;
-      result.reason = "no convergence in " + std::to_string(iteration) + " iterations";
-      break;
-    }
-
-    const Clock::time_point iteration_start = Clock::now();
-    const long factorizations_at_start = total_factorizations();
-    const Eigen::VectorXd q0 = s.evaluator.position();
-    const Eigen::VectorXd weights = objective_.gradient_weights();
-    as_eigen(s.f_scale.get()) = weights.cwiseAbs().cwiseMax(kMinimumScale);
-    as_eigen(s.u.get()) = q0;
-    s.system.reset_iteration_flags();
-    s.evaluator.clear_failures();
-
-    // An unexpected exception in a callback: back to q0 (best effort), then rethrow.
-    auto rethrow_if_fatal = [&] {
-      if (!s.evaluator.has_fatal()) return;
-      try {
-        objective_.set(q0);
-      } catch (...) {
-      }
-      s.evaluator.rethrow_if_fatal();
-    };
-    int flag = KINSol(s.kinsol.get(), s.u.get(), KIN_LINESEARCH, s.u_scale.get(), s.f_scale.get());
-    rethrow_if_fatal();
-    report.energy_line_search = false;
-    double accepted_energy = 0.0;  // known after an energy line search step
-    if (flag == KIN_LSETUP_FAIL && s.system.deferred()) {
-      // The (possibly shifted) factorization is ready: step on the energy.
-      report.energy_line_search = true;
-      s.evaluator.move_to(q0);
-      const Eigen::VectorXd g0 = s.evaluator.gradient();
-      const DescentStepResult step =
-          energy_descent_step(s.evaluator, s.system.cholesky(), q0, report.energy, g0, descent);
-      rethrow_if_fatal();
-      if (!step.accepted) {
-        objective_.set(q0);  // the last good state
-        s.evaluator.sync();
-        const bool all_rejected = step.trials > 0 && step.rejected_configurations == step.trials;
-        const EvaluationFailure why = s.evaluator.last_failure();
-        result.status = all_rejected && why == EvaluationFailure::NonFinite
-                            ? NewtonStatus::NonFinite
-                            : NewtonStatus::LineSearchFailed;
-        result.reason = all_rejected ? "the objective failed at every trial point: " +
-                                           s.evaluator.last_message()
-                                     : "no energy decrease along the Newton step";
-        break;
-      }
-      as_eigen(s.u.get()) = s.evaluator.position();
-      accepted_energy = step.energy;
-      flag = KIN_SUCCESS;
-    }
-    const bool accepted =
-        flag == KIN_SUCCESS || flag == KIN_MAXITER_REACHED || flag == KIN_INITIAL_GUESS_OK;
-    if (!accepted) {
-      objective_.set(q0);  // the last good state
-      s.evaluator.sync();
-      classify_failure(flag, s.evaluator, s.system, s.last_message, result);
-      break;
-    }
-    const Eigen::Map<Eigen::VectorXd> q = as_eigen(s.u.get());
-    s.evaluator.move_to(q);
-
-    report.iteration = iteration + 1;
-    report.energy = report.energy_line_search ? accepted_energy : objective_.energy();
-    if (!std::isfinite(report.energy)) {
-      // KINSOL's line search watches the gradient only: a step to a point
-      // with a finite gradient but no finite energy is not a good state.
-      objective_.set(q0);  // the last good state
-      s.evaluator.sync();
-      report.energy = result.energy;
-      result.status = NewtonStatus::NonFinite;
-      result.reason = "the energy is not finite after the step of iteration " +
-                      std::to_string(iteration + 1) + "; the state before it is kept";
-      break;
-    }
-    report.step_norm = (q - q0).lpNorm<Eigen::Infinity>();
-    // KINSOL's own stagnation test (KINScSNorm with unit scaling); KINSOL
-    // applies it itself to the steps it takes.
-    stagnant = report.energy_line_search &&
-               ((q - q0).array().abs() / (1.0 + q.array().abs())).maxCoeff() <=
-                   options_.scaled_step_tolerance;
-    // The rebase moves nothing (the energy stays), but re-expresses q.
-    objective_.rebase();
-    s.evaluator.sync();
-    s.system.prepare_hessian();
-    report.gradient_measure = weighted_max_norm(weights, s.evaluator.gradient());
-    report.factorizations = total_factorizations() - factorizations_at_start;
-    report.shifted = s.system.any_shift();
-    report.shift = s.system.max_shift();
-    report.seconds = seconds_since(iteration_start);
-    report.hessian_seconds = s.system.hessian_seconds();
-    report.factorization_seconds = s.system.factorization_seconds();
-    if (callbacks.on_iteration) callbacks.on_iteration(report);
+  descent.max_step = options.max_step;
+  const DescentStepResult step =
+      energy_descent_step(evaluator, system.cholesky(), q0, run.report.energy, g0, descent);
+  rethrow_if_fatal(q0);
+  if (!step.accepted) {
+    restore(q0);
+    fail_line_search(step, evaluator, "Newton step", run.result);
+    return false;
   }
+  as_eigen(u.get()) = evaluator.position();
+  energy = step.energy;
+  return true;
+}
 
-  if (result.status != NewtonStatus::NonFinite) {
-    result.stable = is_positive_definite(s.system.cholesky(), objective_.hessian());
+// Moves to KINSOL's (or the line search's) new point in u and reports its
+// energy, step and stagnation; false (the state before the step kept) when
+// its energy is not finite.
+bool NewtonSolver::Impl::accept_step(int iteration, const Eigen::VectorXd& q0, double energy,
+                                     NewtonRun& run) {
+  NewtonReport& report = run.report;
+  const Eigen::Map<Eigen::VectorXd> q = as_eigen(u.get());
+  evaluator.move_to(q);
+  report.iteration = iteration + 1;
+  report.energy = report.energy_line_search ? energy : objective.energy();
+  if (!std::isfinite(report.energy)) {
+    // KINSOL's line search watches the gradient only: a step to a point
+    // with a finite gradient but no finite energy is not a good state.
+    restore(q0);
+    report.energy = run.result.energy;
+    run.result.status = SolveStatus::NonFinite;
+    run.result.reason = "the energy is not finite after the step of iteration " +
+                        std::to_string(iteration + 1) + "; the state before it is kept";
+    return false;
   }
-  result.factorizations = total_factorizations();
-  result.seconds = seconds_since(start);
-  return result;
+  report.step_norm = (q - q0).lpNorm<Eigen::Infinity>();
+  // KINSOL applies its own stagnation test to the steps it takes.
+  run.stagnant =
+      report.energy_line_search && scaled_step_length(q, q0) <= options.scaled_step_tolerance;
+  return true;
+}
+
+// Back to the last good state.
+void NewtonSolver::Impl::restore(const Eigen::VectorXd& q0) {
+  objective.set(q0);
+  evaluator.sync();
+}
+
+// An unexpected exception in a callback: back to q0 (best effort), then rethrow.
+void NewtonSolver::Impl::rethrow_if_fatal(const Eigen::VectorXd& q0) {
+  if (!evaluator.has_fatal()) return;
+  try {
+    objective.set(q0);
+  } catch (...) {
+  }
+  evaluator.rethrow_if_fatal();
+}
+
+void NewtonSolver::Impl::finish(NewtonRun& run) {
+  if (run.result.status != SolveStatus::NonFinite)
+    run.result.stable = is_positive_definite(system.cholesky(), objective.hessian());
+  run.result.factorizations = factorizations() - run.factorizations_at_start;
 }
 
 NewtonResult solve_newton(Objective& objective, const NewtonOptions& options,

@@ -33,6 +33,7 @@
 #include <string>
 
 #include "integrators/common/objective.hpp"
+#include "integrators/common/solve_result.hpp"
 #include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/linear_algebra/shifted_factorization.hpp"
 
@@ -70,23 +71,12 @@ struct NewtonOptions {
   // Scaled step tolerance (KINSetScaledStepTol, and the same test after an
   // energy line search step): a step with max_i |dq_i| / (1 + |q_i|) below
   // it means the gradient cannot be reduced further (its round-off floor
-  // is above gradient_tolerance): the solve stops with LineSearchFailed.
+  // is above gradient_tolerance): the solve stops with
+  // SolveStatus::LineSearchFailed.
   double scaled_step_tolerance = 1e-14;
   ShiftOptions shift;  // handling of indefinite Hessians
   LineSearch line_search = LineSearch::Energy;
 };
-
-enum class NewtonStatus {
-  Converged,  // gradient measure <= tolerance
-  MaxIterations,
-  LinearSolverFailed,  // the Hessian could not be factorized, even shifted
-  LineSearchFailed,    // no acceptable step (either line search), stagnation at the
-                       // round-off floor, or the objective rejected every trial point
-  NonFinite,           // NaN/inf in the energy, gradient or Hessian
-  Interrupted,         // the stop flag was raised
-};
-
-const char* to_string(NewtonStatus status);
 
 // One per iteration, and one for the initial state (iteration 0).
 struct NewtonReport {
@@ -108,17 +98,12 @@ struct NewtonCallbacks {
   const std::atomic<bool>* stop = nullptr;                // optional; checked before each iteration
 };
 
-struct NewtonResult {
-  NewtonStatus status = NewtonStatus::MaxIterations;
-  std::string reason;             // one line
-  int iterations = 0;             // completed iterations (a failed one is not counted)
-  double gradient_measure = 0.0;  // at the final state
-  double energy = 0.0;
-  bool stable = false;      // unshifted LL^T of the final Hessian succeeded
-  long factorizations = 0;  // including the final stability check
-  double seconds = 0.0;
-  bool converged() const { return status == NewtonStatus::Converged; }
-};
+// Newton's result is the common one (solve_result.hpp): LinearSolverFailed
+// when the Hessian could not be factorized even shifted; LineSearchFailed
+// when no step was acceptable (either line search), at stagnation on the
+// round-off floor, or when the objective rejected every trial point;
+// iterations counts completed iterations (a failed one is not counted).
+using NewtonResult = SolveResult;
 
 // A Newton solver bound to one objective (its size must not change). Keeps
 // the KINSOL memory and the CHOLMOD symbolic analysis across solve() calls,

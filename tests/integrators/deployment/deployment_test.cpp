@@ -37,7 +37,7 @@ DeploymentResult run(LinkageProblem& problem, const DeploymentPlan& plan,
                      const DeploymentOptions& options) {
   const DeploymentResult r = deploy(problem, plan, options);
   CAPTURE(r.reason);
-  REQUIRE(r.completed());
+  REQUIRE(r.converged());
   return r;
 }
 
@@ -232,7 +232,7 @@ TEST_CASE("A failing step is halved and retried, the deployment reports a step i
       4;  // too few for a whole step of 0.4 rad (5), enough for smaller ones
   const DeploymentResult r = deploy(problem, average_plan(start + 0.4, 1), options);
   CAPTURE(r.reason);
-  REQUIRE(r.completed());
+  REQUIRE(r.converged());
   CHECK(r.failed_attempts >= 1);
   CHECK(r.steps.size() >= 3);
   CHECK(r.steps.back().fraction == 1.0);
@@ -244,7 +244,7 @@ TEST_CASE("A failing step is halved and retried, the deployment reports a step i
   options.newton.max_iterations = 1;
   options.max_halvings = 2;
   const DeploymentResult failed = deploy(again, average_plan(start + 0.4, 1), options);
-  CHECK(failed.status == DeploymentStatus::StepFailed);
+  CHECK(failed.status == SolveStatus::StepFailed);
   CHECK(failed.failed_attempts == 3);
   CHECK(failed.steps.size() == 1);  // only the start
   // Left at the last accepted state, the start.

@@ -112,17 +112,17 @@ TEST_CASE("damped dynamics reaches Newton's equilibria, with energy decreasing")
         const double drop = run.reports.front().energy - run.result.energy;
         const double rise = run.max_total_energy_rise();
         INFO(toy.name << ", " << label(options) << ": " << run.result.reason);
-        REQUIRE(run.result.status == DynamicsStatus::Converged);
+        REQUIRE(run.result.status == SolveStatus::Converged);
         CHECK(run.result.gradient_measure <= 1e-10);
         CHECK(run.result.stable);
         CHECK(distance < 1e-6);
         CHECK(drop > 0.0);
         CHECK(rise <= 1e-6 * drop);  // E + K never increases beyond round-off/truncation
-        CHECK(run.result.steps == static_cast<long>(run.reports.size()) - 1);
+        CHECK(run.result.iterations == static_cast<long>(run.reports.size()) - 1);
         // Steps grow as the motion dies out.
         CHECK(run.reports.back().step_size > 100.0 * run.reports[1].step_size);
         ++compared;
-        MESSAGE(toy.name << ", " << label(options) << ": " << run.result.steps << " steps, "
+        MESSAGE(toy.name << ", " << label(options) << ": " << run.result.iterations << " steps, "
                          << run.result.rebases << " rebases, " << run.result.factorizations
                          << " factorizations, c = " << run.result.damping << ", t = "
                          << run.result.time << ", last h = " << run.reports.back().step_size
@@ -149,7 +149,7 @@ TEST_CASE("damped dynamics near the column's saddle") {
       StencilObjective column = make_column(near);
       const DynamicsRun run = run_dynamics(column, tight(form, MassModel::Physical));
       INFO(label(tight(form, MassModel::Physical)) << ": " << run.result.reason);
-      REQUIRE(run.result.status == DynamicsStatus::Converged);
+      REQUIRE(run.result.status == SolveStatus::Converged);
       CHECK(run.result.stable);
       CHECK(column.get()[middle] > 0.05);  // buckled towards the imperfection
       CHECK((column.get() - reference.get()).norm() < 1e-6 * reference.get().norm());
@@ -158,8 +158,9 @@ TEST_CASE("damped dynamics near the column's saddle") {
       // column buckles are 1e-6 of the drop (first order, Rayleigh damping).
       CHECK(run.max_total_energy_rise() <= 1e-5 * (run.reports.front().energy - run.result.energy));
       MESSAGE("column from imperfection 1e-4, "
-              << label(tight(form, MassModel::Physical)) << ": " << run.result.steps << " steps ("
-              << run.result.rejected_steps << " rejected: E + K rose), t = " << run.result.time);
+              << label(tight(form, MassModel::Physical)) << ": " << run.result.iterations
+              << " steps (" << run.result.rejected_steps
+              << " rejected: E + K rose), t = " << run.result.time);
     }
   }
   SUBCASE("on the saddle, steps are held below a failed factorization") {
@@ -176,14 +177,14 @@ TEST_CASE("damped dynamics near the column's saddle") {
         runs[cap] = run_dynamics(column, o).result;
         ends[cap] = column.get();
         INFO(label(o) << ", cap " << cap << ": " << runs[cap].reason);
-        REQUIRE(runs[cap].status == DynamicsStatus::Converged);
+        REQUIRE(runs[cap].status == SolveStatus::Converged);
         CHECK_FALSE(runs[cap].stable);
       }
       MESSAGE("straight column on its saddle, "
               << label(tight(form, MassModel::Physical))
-              << ": steps, factorizations (convergence failures) " << runs[0].steps << ", "
+              << ": steps, factorizations (convergence failures) " << runs[0].iterations << ", "
               << runs[0].factorizations << " (" << runs[0].convergence_failures
-              << ") without the step cap, " << runs[1].steps << ", " << runs[1].factorizations
+              << ") without the step cap, " << runs[1].iterations << ", " << runs[1].factorizations
               << " (" << runs[1].convergence_failures << ") with it");
       CHECK((ends[1] - ends[0]).norm() <= 1e-6 * ends[0].norm());
       CHECK(runs[1].convergence_failures < runs[0].convergence_failures);
@@ -199,7 +200,7 @@ TEST_CASE("damped dynamics near the column's saddle") {
       o.endgame.step_length = 1.0;
       const DynamicsRun run = run_dynamics(column, o);
       INFO(label(o) << ": " << run.result.reason);
-      REQUIRE(run.result.status == DynamicsStatus::Converged);
+      REQUIRE(run.result.status == SolveStatus::Converged);
       CHECK_FALSE(run.result.stable);
       CHECK(column.get()[middle] == 0.0);
     }
@@ -209,7 +210,7 @@ TEST_CASE("damped dynamics near the column's saddle") {
     const DynamicsRun run =
         run_dynamics(column, tight(DynamicsForm::FirstOrder, MassModel::Physical));
     INFO(run.result.reason);
-    REQUIRE(run.result.status == DynamicsStatus::Converged);
+    REQUIRE(run.result.status == SolveStatus::Converged);
     CHECK(column.get()[middle] == 0.0);
     CHECK_FALSE(run.result.stable);
   }
@@ -245,7 +246,7 @@ TEST_CASE(
       runs.push_back(run_dynamics(column, o));
       const DynamicsRun& run = runs.back();
       INFO(label(o) << ", factor " << factor << ": " << run.result.reason);
-      REQUIRE(run.result.status == DynamicsStatus::Converged);
+      REQUIRE(run.result.status == SolveStatus::Converged);
       CHECK(run.result.gradient_measure <= o.stopping.gradient_tolerance);
       CHECK_FALSE(run.result.stable);
       CHECK((column.configuration() - reference.configuration()).norm() <=
@@ -261,9 +262,9 @@ TEST_CASE(
     CHECK(handover.order > 0);
     CHECK(handover.gradient_measure <= 100.0 * o.stopping.gradient_tolerance);
     CHECK(handover.gradient_measure > o.stopping.gradient_tolerance);
-    CHECK(settled.steps < plain.steps);
-    MESSAGE(label(o) << ": " << plain.steps << " steps without the settled end game, "
-                     << settled.steps << " with it (" << settled.endgame_steps
+    CHECK(settled.iterations < plain.iterations);
+    MESSAGE(label(o) << ": " << plain.iterations << " steps without the settled end game, "
+                     << settled.iterations << " with it (" << settled.endgame_steps
                      << " of them Newton)");
   }
 }
@@ -308,7 +309,7 @@ TEST_CASE("damped dynamics from the slow manifold: moving at the start, same equ
     options.start.velocity = start;
     const DynamicsRun run = run_dynamics(chain, options);
     INFO((start == DynamicsStart::Rest ? "rest" : "slow manifold") << ": " << run.result.reason);
-    REQUIRE(run.result.status == DynamicsStatus::Converged);
+    REQUIRE(run.result.status == SolveStatus::Converged);
     if (start == DynamicsStart::Rest)
       CHECK(run.reports.front().kinetic_energy == 0.0);
     else
@@ -334,8 +335,8 @@ TEST_CASE("damped dynamics: stop flag, step limit and non-finite values") {
     };
     run.result =
         solve_dynamics(chain, tight(DynamicsForm::SecondOrder, MassModel::Physical), callbacks);
-    CHECK(run.result.status == DynamicsStatus::Interrupted);
-    CHECK(run.result.steps == 5);
+    CHECK(run.result.status == SolveStatus::Interrupted);
+    CHECK(run.result.iterations == 5);
     CHECK(run.reports.size() == 6);
     CHECK(std::isfinite(chain.energy()));
   }
@@ -344,15 +345,15 @@ TEST_CASE("damped dynamics: stop flag, step limit and non-finite values") {
     DynamicsOptions options = tight(DynamicsForm::SecondOrder, MassModel::Physical);
     options.stopping.max_steps = 7;
     const DynamicsRun run = run_dynamics(chain, options);
-    CHECK(run.result.status == DynamicsStatus::MaxSteps);
-    CHECK(run.result.steps == 7);
+    CHECK(run.result.status == SolveStatus::IterationLimit);
+    CHECK(run.result.iterations == 7);
   }
   SUBCASE("NaN at the start") {
     SqrtWell well(Eigen::VectorXd::Constant(3, -1.0), InvalidBehaviour::NaN);
     const DynamicsRun run =
         run_dynamics(well, tight(DynamicsForm::SecondOrder, MassModel::Physical));
-    CHECK(run.result.status == DynamicsStatus::NonFinite);
-    CHECK(run.result.steps == 0);
+    CHECK(run.result.status == SolveStatus::NonFinite);
+    CHECK(run.result.iterations == 0);
     CHECK_FALSE(run.result.stable);
   }
   SUBCASE("the motion runs into a NaN region: NonFinite, left at the last good step") {
@@ -361,18 +362,18 @@ TEST_CASE("damped dynamics: stop flag, step limit and non-finite values") {
     const DynamicsRun run =
         run_dynamics(well, tight(DynamicsForm::FirstOrder, MassModel::Physical));
     INFO(run.result.reason);
-    CHECK(run.result.status == DynamicsStatus::NonFinite);
+    CHECK(run.result.status == SolveStatus::NonFinite);
     CHECK(well.invalid_encounters() > 0);
     CHECK(std::isfinite(well.energy()));
     CHECK((well.get().array() >= 3.9).all());
-    CHECK(run.result.steps == static_cast<long>(run.reports.size()) - 1);
+    CHECK(run.result.iterations == static_cast<long>(run.reports.size()) - 1);
   }
   SUBCASE("the motion runs into invalid configurations: IntegratorFailed") {
     SqrtWell well(Eigen::VectorXd::Constant(3, 4.0), InvalidBehaviour::Throw, 3.9);
     const DynamicsRun run =
         run_dynamics(well, tight(DynamicsForm::SecondOrder, MassModel::Physical));
     INFO(run.result.reason);
-    CHECK(run.result.status == DynamicsStatus::IntegratorFailed);
+    CHECK(run.result.status == SolveStatus::IntegratorFailed);
     CHECK(well.invalid_encounters() > 0);
     CHECK((well.get().array() >= 3.9).all());
   }

@@ -242,7 +242,7 @@ Timed time_dynamics(LinkageProblem problem, double tolerance, DynamicsForm form)
   const DynamicsResult r = solve_dynamics(objective, o);
   if (!r.converged()) MESSAGE("  not converged: " << r.reason);
   return {r.converged(),
-          r.steps,
+          r.iterations,
           r.factorizations,
           r.seconds,
           problem.energy().total(),
@@ -373,7 +373,7 @@ TEST_CASE("Started on the slow manifold, the second-order form skips the initial
     CAPTURE(d.reason);
     REQUIRE(d.converged());
     CHECK(d.stable);
-    steps[slow] = d.steps;
+    steps[slow] = d.iterations;
     energy[slow] = d.energy;
     CHECK((reports.front().kinetic_energy > 0.0) == slow);
     // E + K starts at E_0 + K_0 and never rises.
@@ -414,7 +414,7 @@ TEST_CASE("An end game handed over too early gives way to the dynamics again") {
     const DynamicsResult& d = run.result;
     CAPTURE(d.reason);
     if (growth == 1.0) {  // no resumption: the first end game's failure ends the run
-      CHECK(d.status == DynamicsStatus::IntegratorFailed);
+      CHECK(d.status == SolveStatus::IntegratorFailed);
       CHECK(d.endgame_fallbacks == 0);
       CHECK(d.endgame_steps == 2);
       continue;

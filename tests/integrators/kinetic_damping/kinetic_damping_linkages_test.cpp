@@ -212,9 +212,9 @@ void benchmark(const std::string& name, const std::function<LinkageProblem()>& m
     options.stopping.max_steps = dynamics_steps;
     const std::clock_t cpu = std::clock();
     const DynamicsResult r = solve_dynamics(objective, options);
-    dynamics = {r.steps, r.seconds, cpu_seconds_since(cpu), r.gradient_measure, r.converged()};
+    dynamics = {r.iterations, r.seconds, cpu_seconds_since(cpu), r.gradient_measure, r.converged()};
     // Reported, not asserted: damped dynamics has tests of its own.
-    WARN_MESSAGE((r.converged() || r.status == DynamicsStatus::MaxSteps),
+    WARN_MESSAGE((r.converged() || r.status == SolveStatus::IterationLimit),
                  name << ": dynamics: " << r.reason);
   }
   auto times = [](const Timing& t) {
@@ -250,7 +250,7 @@ void benchmark(const std::string& name, const std::function<LinkageProblem()>& m
     const Timing kd = {r.iterations, r.seconds, cpu_seconds_since(cpu), r.gradient_measure,
                        r.converged()};
     INFO(name << ": kinetic damping: " << r.reason);
-    CHECK((r.converged() || r.status == KineticDampingStatus::Interrupted));
+    CHECK((r.converged() || r.status == SolveStatus::Interrupted));
     if (r.converged()) {
       CHECK((stacked_positions(problem) - x_newton).norm() < 1e-6 * (x_newton - x_input).norm());
       CHECK(energy_difference(problem.energy().total(), e_newton, e_start) < 1e-7);

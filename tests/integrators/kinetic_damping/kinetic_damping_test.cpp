@@ -372,7 +372,7 @@ TEST_CASE("kinetic damping: stop flag, iteration limit, invalid and non-finite s
       if (r.iteration == 5) stop = true;
     };
     run.result = solve_kinetic_damping(chain, tight(), callbacks);
-    CHECK(run.result.status == KineticDampingStatus::Interrupted);
+    CHECK(run.result.status == SolveStatus::Interrupted);
     CHECK(run.result.iterations == 5);
     CHECK(run.reports.size() == 6);
     CHECK(std::isfinite(chain.energy()));
@@ -382,14 +382,14 @@ TEST_CASE("kinetic damping: stop flag, iteration limit, invalid and non-finite s
     KineticDampingOptions options = tight();
     options.max_iterations = 7;
     const Run run = run_kinetic_damping(chain, options);
-    CHECK(run.result.status == KineticDampingStatus::MaxIterations);
+    CHECK(run.result.status == SolveStatus::IterationLimit);
     CHECK(run.result.iterations == 7);
     CHECK(run.reports.size() == 8);
   }
   SUBCASE("NaN at the start") {
     SqrtWell well(Eigen::VectorXd::Constant(3, -1.0), InvalidBehaviour::NaN);
     const Run run = run_kinetic_damping(well, tight());
-    CHECK(run.result.status == KineticDampingStatus::NonFinite);
+    CHECK(run.result.status == SolveStatus::NonFinite);
     CHECK(run.result.iterations == 0);
     CHECK_FALSE(run.result.stable);
   }
@@ -397,7 +397,7 @@ TEST_CASE("kinetic damping: stop flag, iteration limit, invalid and non-finite s
     SqrtWell well(Eigen::VectorXd::Constant(3, 4.0), InvalidBehaviour::NaN, 3.9);
     const Run run = run_kinetic_damping(well, tight());
     INFO(run.result.reason);
-    CHECK(run.result.status == KineticDampingStatus::NonFinite);
+    CHECK(run.result.status == SolveStatus::NonFinite);
     CHECK(run.result.rejected_steps > tight().max_rejected_steps);
     CHECK(well.invalid_encounters() > 0);
     CHECK(std::isfinite(well.energy()));
@@ -420,7 +420,7 @@ TEST_CASE("kinetic damping: stop flag, iteration limit, invalid and non-finite s
     options.rebase_interval = 1000;  // rejections only happen between rebases
     const Run run = run_kinetic_damping(well, options);
     INFO(run.result.reason);
-    CHECK(run.result.status == KineticDampingStatus::NonFinite);
+    CHECK(run.result.status == SolveStatus::NonFinite);
     CHECK(run.result.rejected_steps > options.max_rejected_steps);
     CHECK((well.get().array() >= 3.9).all());
     CHECK(run.result.energy == well.energy());  // the energy of the state kept
@@ -430,7 +430,7 @@ TEST_CASE("kinetic damping: stop flag, iteration limit, invalid and non-finite s
     SqrtWell well(Eigen::VectorXd::Constant(3, 4.0), InvalidBehaviour::Throw, 3.9);
     const Run run = run_kinetic_damping(well, tight());
     INFO(run.result.reason);
-    CHECK(run.result.status == KineticDampingStatus::InvalidConfiguration);
+    CHECK(run.result.status == SolveStatus::InvalidConfiguration);
     CHECK(well.invalid_encounters() > 0);
     CHECK((well.get().array() >= 3.9).all());
   }

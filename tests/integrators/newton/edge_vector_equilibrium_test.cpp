@@ -94,7 +94,7 @@ struct Solved {
   std::vector<std::optional<double>> angles;
   double energy = 0.0;
   double diagonal = 0.0;
-  int iterations = 0;
+  long iterations = 0;
 };
 
 Solved solve(const LoadCase& c, JointKind kind) {

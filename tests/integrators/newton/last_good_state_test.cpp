@@ -51,7 +51,7 @@ TEST_CASE(
   callbacks.on_iteration = [&](const NewtonReport&) { ++reports; };
   const NewtonResult result = solve_newton(objective, options, callbacks);
   INFO(result.reason);
-  CHECK(result.status == NewtonStatus::NonFinite);
+  CHECK(result.status == SolveStatus::NonFinite);
   CHECK(result.iterations == 0);
   CHECK(reports == 1);  // the start only
   CHECK(objective.get() == Eigen::VectorXd::Zero(3));

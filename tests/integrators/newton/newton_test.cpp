@@ -81,7 +81,7 @@ TEST_CASE("Newton converges quadratically on the chain") {
     StencilObjective chain = make_chain();
     const Recorded run = run_newton(chain, options);
     INFO(label(options) << ": " << run.result.reason);
-    REQUIRE(run.result.status == NewtonStatus::Converged);
+    REQUIRE(run.result.status == SolveStatus::Converged);
     CHECK(run.result.gradient_measure <= 1e-10);
     CHECK(run.result.stable);
     CHECK(run.result.iterations == static_cast<int>(run.reports.size()) - 1);
@@ -98,7 +98,7 @@ TEST_CASE("Newton converges on the extended Rosenbrock function") {
     StencilObjective rosenbrock = make_rosenbrock(8);
     const Recorded run = run_newton(rosenbrock, options);
     INFO(label(options) << ": " << run.result.reason);
-    REQUIRE(run.result.status == NewtonStatus::Converged);
+    REQUIRE(run.result.status == SolveStatus::Converged);
     CHECK((rosenbrock.get() - Eigen::VectorXd::Ones(8)).norm() < 1e-8);
     CHECK(run.result.stable);
     expect_quadratic_convergence(run, "rosenbrock, " + label(options));
@@ -113,7 +113,7 @@ TEST_CASE("Newton on the offset (rebasing) objective") {
     OffsetObjective offset(inner, 0.3);
     const Recorded run = run_newton(offset, options);
     INFO(label(options) << ": " << run.result.reason);
-    REQUIRE(run.result.status == NewtonStatus::Converged);
+    REQUIRE(run.result.status == SolveStatus::Converged);
     CHECK(run.result.stable);
     CHECK(offset.rebases() ==
           run.result.iterations + 1);   // one before the first iteration, one after each
@@ -128,7 +128,7 @@ TEST_CASE("Newton from a converged start does no iteration") {
   REQUIRE(solve_newton(chain, tight()).converged());
   const long evaluations = chain.evaluations();
   const Recorded run = run_newton(chain, tight());
-  CHECK(run.result.status == NewtonStatus::Converged);
+  CHECK(run.result.status == SolveStatus::Converged);
   CHECK(run.result.iterations == 0);
   CHECK(run.reports.size() == 1);
   CHECK(run.result.stable);
@@ -157,14 +157,14 @@ TEST_CASE("Newton on the Euler column: saddle versus buckled minimum") {
     StencilObjective column = make_column(straight);
     const Recorded run = run_newton(column, tight());
     INFO(run.result.reason);
-    REQUIRE(run.result.status == NewtonStatus::Converged);
+    REQUIRE(run.result.status == SolveStatus::Converged);
     CHECK(std::abs(column.get()[column_middle_y(straight)]) < 1e-12);
     CHECK_FALSE(run.result.stable);  // never call a saddle stable
     MESSAGE("straight column: " << run.result.iterations << " iterations");
 
     // Restarted exactly at the saddle: converged at once, still unstable.
     const Recorded again = run_newton(column, tight());
-    CHECK(again.result.status == NewtonStatus::Converged);
+    CHECK(again.result.status == SolveStatus::Converged);
     CHECK(again.result.iterations == 0);
     CHECK_FALSE(again.result.stable);
   }
@@ -176,7 +176,7 @@ TEST_CASE("Newton on the Euler column: saddle versus buckled minimum") {
       StencilObjective column = make_column(imperfect);
       const Recorded run = run_newton(column, options);
       INFO(label(options) << ": " << run.result.reason);
-      REQUIRE(run.result.status == NewtonStatus::Converged);
+      REQUIRE(run.result.status == SolveStatus::Converged);
       CHECK(run.result.stable);
       CHECK(column.get()[column_middle_y(imperfect)] > 0.05);  // buckled, same side
       bool any_shift = false;
@@ -200,10 +200,10 @@ TEST_CASE("KINSOL's merit line search alone stalls on an indefinite start") {
   NewtonOptions kinsol_only = tight();
   kinsol_only.line_search = LineSearch::Kinsol;
   const Recorded run = run_newton(chain, kinsol_only);
-  MESSAGE("LineSearch::Kinsol on the chain: " << std::string(to_string(run.result.status)) << " ("
+  MESSAGE("LineSearch::Kinsol on the chain: " << std::string(describe(run.result.status)) << " ("
                                               << run.result.reason << ") after "
                                               << run.result.iterations << " iterations");
-  CHECK(run.result.status == NewtonStatus::LineSearchFailed);
+  CHECK(run.result.status == SolveStatus::LineSearchFailed);
   REQUIRE(run.reports.size() >= 1);
   CHECK(std::isfinite(chain.energy()));  // left at the last accepted iterate
 
@@ -211,7 +211,7 @@ TEST_CASE("KINSOL's merit line search alone stalls on an indefinite start") {
   NewtonOptions with_fallback = tight();
   with_fallback.line_search = LineSearch::KinsolWithEnergyFallback;
   const Recorded fallback = run_newton(fresh, with_fallback);
-  CHECK(fallback.result.status == NewtonStatus::Converged);
+  CHECK(fallback.result.status == SolveStatus::Converged);
   bool used_fallback = false;
   for (const NewtonReport& r : fallback.reports)
     used_fallback = used_fallback || r.energy_line_search;
@@ -229,7 +229,7 @@ TEST_CASE("Newton stops when the stop flag is raised") {
   };
   callbacks.stop = &stop;
   const NewtonResult result = solve_newton(rosenbrock, tight(), callbacks);
-  CHECK(result.status == NewtonStatus::Interrupted);
+  CHECK(result.status == SolveStatus::Interrupted);
   CHECK(result.iterations == 2);
   CHECK(reports == 3);
   CHECK(std::isfinite(rosenbrock.energy()));
@@ -244,7 +244,7 @@ TEST_CASE("Newton handles invalid configurations and non-finite values") {
       SqrtWell well(start, InvalidBehaviour::Throw);
       const NewtonResult result = solve_newton(well, options);
       INFO(result.reason);
-      CHECK(result.status == NewtonStatus::Converged);
+      CHECK(result.status == SolveStatus::Converged);
       CHECK(well.invalid_encounters() >= 2);
       CHECK((well.get() - Eigen::VectorXd::Ones(3)).norm() < 1e-8);
     }
@@ -252,7 +252,7 @@ TEST_CASE("Newton handles invalid configurations and non-finite values") {
       SqrtWell well(start, InvalidBehaviour::NaN);
       const NewtonResult result = solve_newton(well, options);
       INFO(result.reason);
-      CHECK(result.status == NewtonStatus::Converged);
+      CHECK(result.status == SolveStatus::Converged);
       CHECK(well.invalid_encounters() >= 2);
     }
     SUBCASE("a NaN region between the start and the minimum stops the solve") {
@@ -264,11 +264,11 @@ TEST_CASE("Newton handles invalid configurations and non-finite values") {
       CHECK((well.get().array() >= 3.9).all());
       if (options.line_search == LineSearch::Energy) {
         // Backtracks into the valid sliver [3.9, 4], then stagnates at its edge.
-        CHECK(result.status == NewtonStatus::LineSearchFailed);
+        CHECK(result.status == SolveStatus::LineSearchFailed);
         CHECK(result.iterations >= 1);
       } else {
         // KINSOL halves a failing step at most 5 times: every trial is NaN.
-        CHECK(result.status == NewtonStatus::NonFinite);
+        CHECK(result.status == SolveStatus::NonFinite);
         CHECK(result.iterations == 0);
         CHECK(well.get() == start);
       }
@@ -277,13 +277,13 @@ TEST_CASE("Newton handles invalid configurations and non-finite values") {
       SqrtWell well(start, InvalidBehaviour::Throw, 3.9);
       const NewtonResult result = solve_newton(well, options);
       INFO(result.reason);
-      CHECK(result.status == NewtonStatus::LineSearchFailed);
+      CHECK(result.status == SolveStatus::LineSearchFailed);
       CHECK((well.get().array() >= 3.9).all());
     }
     SUBCASE("NaN at the start: NonFinite without any iteration") {
       SqrtWell well(Eigen::VectorXd::Constant(3, -1.0), InvalidBehaviour::NaN);
       const NewtonResult result = solve_newton(well, options);
-      CHECK(result.status == NewtonStatus::NonFinite);
+      CHECK(result.status == SolveStatus::NonFinite);
       CHECK(result.iterations == 0);
       CHECK_FALSE(result.stable);
     }
@@ -296,7 +296,7 @@ TEST_CASE("Newton stops at the round-off floor instead of iterating forever") {
   options.gradient_tolerance = 1e-300;  // below any achievable gradient
   const NewtonResult result = solve_newton(chain, options);
   INFO(result.reason);
-  CHECK(result.status == NewtonStatus::LineSearchFailed);
+  CHECK(result.status == SolveStatus::LineSearchFailed);
   CHECK(result.iterations < 30);
   CHECK(result.gradient_measure < 1e-12);
   CHECK(result.stable);
