@@ -38,7 +38,7 @@ TEST_CASE("fabricate: the configuration's linkage as drawn") {
   fs::remove_all(dir);
 }
 
-TEST_CASE("fabricate --init: the angles of a relaxed state, the lengths of the rest state") {
+TEST_CASE("fabricate --init: the angles of a relaxed state and the lengths of the rest state") {
   const fs::path dir = temporary_directory("fabricate-init");
   write_text(dir / "run.json", sample_config(dir / "relaxed"));
   const CommandResult relax = run_xshell("relax run.json --quiet", dir);
@@ -66,7 +66,7 @@ TEST_CASE("fabricate --init: the angles of a relaxed state, the lengths of the r
   fs::remove_all(dir);
 }
 
-TEST_CASE("fabricate: invalid input exits 2, an unwritable output 4") {
+TEST_CASE("fabricate: invalid input exits 2 and an unwritable output 4") {
   const fs::path dir = temporary_directory("fabricate-bad");
   FabricateArguments args;
   args.config = (dir / "missing.json").string();

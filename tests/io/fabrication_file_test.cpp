@@ -104,7 +104,7 @@ ParsedXml parse_xml(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("fabrication.json: the contract's keys, units and values") {
+TEST_CASE("fabrication.json: the contract's keys and units and values") {
   const RodLinkage linkage = sample_grid();
   const FabricationData data = fabrication_data(linkage);
   const json j = fabrication_json(data, FabricationUnits{"length unit of grid.obj"});
@@ -187,7 +187,7 @@ TEST_CASE("fabrication.csv: one row per station with the documented columns") {
   CHECK(row == 1 + 3 + 3);  // each rod: two ends and the joint
 }
 
-TEST_CASE("fabrication.svg: well-formed XML, one lath per rod and one hole per joint station") {
+TEST_CASE("fabrication.svg: well-formed XML with one lath per rod and one hole per joint station") {
   for (const RodLinkage& linkage : {sample_grid(), tee()}) {
     const FabricationData data = fabrication_data(linkage);
     const std::string svg = fabrication_svg(data, FabricationUnits{"unit <&> of \"x\""});
@@ -222,7 +222,7 @@ TEST_CASE("fabrication.svg: well-formed XML, one lath per rod and one hole per j
   }
 }
 
-TEST_CASE("write_fabrication: the three files, atomically, in an existing directory") {
+TEST_CASE("write_fabrication: the three files written atomically into an existing directory") {
   const fs::path dir = fresh_directory("write");
   const RodLinkage linkage = sample_grid();
   write_fabrication(linkage, FabricationUnits{}, dir);

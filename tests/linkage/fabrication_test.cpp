@@ -217,7 +217,8 @@ TEST_CASE("Fabrication: rods that end at joints (valence 2 and 3) reach half an 
   CHECK(checked > 50);
 }
 
-TEST_CASE("Fabrication: invariants on crossings, tees, curved grids, closed rods and beams") {
+TEST_CASE(
+    "Fabrication: invariants on crossings and tees and curved grids and closed rods and beams") {
   int checked = 0;
   for (const LineGraph& graph : {single_x(), tee(), grid(3, 4, 0.4), ring_with_spokes(), beam()})
     for (RestShape rest : {RestShape::Input, RestShape::Straight}) {
@@ -262,7 +263,7 @@ TEST_CASE("Fabrication: a closed rod is cut half an edge before its closing join
   CHECK(closed == 1);
 }
 
-TEST_CASE("Fabrication: families follow the joint labels; the two rods of a joint differ") {
+TEST_CASE("Fabrication: families follow the joint labels and the two rods of a joint differ") {
   int checked = 0;
   for (const LineGraph& graph : {grid(3, 4, 0.4), grid(4, 5, 0.0, 0.3), ring_with_spokes()}) {
     const RodLinkage linkage(graph, test_options());
@@ -279,7 +280,8 @@ TEST_CASE("Fabrication: families follow the joint labels; the two rods of a join
   CHECK(std::string(family_name(RodFamily::B)) == "B");
 }
 
-TEST_CASE("Fabrication: the current opening angle moves with the state, the input one does not") {
+TEST_CASE(
+    "Fabrication: the current opening angle moves with the state but the input one does not") {
   RodLinkage linkage(grid(3, 4, 0.2), test_options());
   const FabricationData before = fabrication_data(linkage);
   Eigen::VectorXd dofs = linkage.dofs();
