@@ -6,6 +6,7 @@
 #include <new>
 
 #include "exit_status.hpp"
+#include "fabricate_command.hpp"
 #include "relax_command.hpp"
 #include "render_command.hpp"
 
@@ -41,6 +42,15 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--height", render.height, "Picture height in pixels");
   render_cmd->add_option("--color", render.color, "Point or cell array to colour by");
 
+  FabricateArguments fabricate;
+  CLI::App* fabricate_cmd = app.add_subcommand(
+      "fabricate", "Write the fabrication data (cut lengths, drill stations) without solving");
+  fabricate_cmd->add_option("config", fabricate.config, "Configuration (JSON)")->required();
+  fabricate_cmd->add_option("--init", fabricate.init,
+                            "Take the state from a state.json written by an earlier run");
+  fabricate_cmd->add_option("--out", fabricate.out,
+                            "Output directory (overrides output.directory)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -60,6 +70,7 @@ int main(int argc, char** argv) {
       std::signal(SIGPIPE, SIG_IGN);
       return run_relax(relax, g_stop);
     }
+    if (*fabricate_cmd) return run_fabricate(fabricate);
     return run_render(render);
   } catch (const std::bad_alloc&) {
     std::cerr

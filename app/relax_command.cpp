@@ -13,6 +13,7 @@
 #include "exit_status.hpp"
 #include "integrators/common/linkage_objective.hpp"
 #include "io/config.hpp"
+#include "io/fabrication_file.hpp"
 #include "io/input_error.hpp"
 #include "io/obj_reader.hpp"
 #include "io/output_error.hpp"
@@ -270,6 +271,14 @@ int finish(Run& run, const SolverRun& solved, Outputs& outputs, RunSummary& summ
   if (!solved.output_error.empty()) {
     std::cerr << "xshell: error: " << solved.output_error << "\n";
     return kExitOutputFailed;
+  }
+  if (summary.converged && !summary.interrupted) {
+    try {
+      write_fabrication(run.problem->linkage(), fabrication_units(run.config), dir);
+    } catch (const OutputError& e) {
+      std::cerr << "xshell: error: " << e.what() << "\n";
+      return kExitOutputFailed;
+    }
   }
   std::fprintf(stderr,
                "xshell: %s after %ld %s: %s; energy %.10e, gradient %.3e (tolerance %.1e), %s; "

@@ -42,6 +42,12 @@ TEST_CASE("relax: the sample runs and writes summary.json, state.json and the VT
   CHECK(read_json(dir / "out" / "state.json")["format"] == "xshell-state");
   CHECK(fs::exists(dir / "out" / "series.pvd"));
   CHECK(fs::exists(dir / "out" / "rods_000000.vtp"));
+  // Every converged run writes the fabrication data (README, "Fabrication data").
+  const nlohmann::json fab = read_json(dir / "out" / "fabrication.json");
+  CHECK(fab["rods"].size() > 0);
+  CHECK(fab["joints"].size() > 0);
+  CHECK(fs::exists(dir / "out" / "fabrication.csv"));
+  CHECK(fs::exists(dir / "out" / "fabrication.svg"));
   // The supported corners did not move; the loaded middle sagged.
   CHECK(s["vertices"][1][2].get<double>() == doctest::Approx(0.0).epsilon(1e-12));
   CHECK(s["vertices"][13][2].get<double>() < -1e-3);
