@@ -47,6 +47,13 @@ std::string scientific(double value) {
   return text;
 }
 
+void set_no_unknowns(double energy, SolveResult& result) {
+  result.status = SolveStatus::Converged;
+  result.reason = "no free unknowns";
+  result.energy = energy;
+  result.stable = true;
+}
+
 bool stop_or_limit(const std::atomic<bool>* stop, long iterations, long limit, const char* unit,
                    SolveResult& result) {
   if (stop != nullptr && stop->load()) {

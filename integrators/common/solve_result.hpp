@@ -72,6 +72,10 @@ struct SolveResult {
 // A number in a reason: "%.3e".
 std::string scientific(double value);
 
+// The result of a solve with no free unknowns: converged ("no free
+// unknowns"), stable, at the given energy.
+void set_no_unknowns(double energy, SolveResult& result);
+
 // The tests that end an iterative solve before its next iteration, in this
 // order: stop flag raised (Interrupted, "stop flag raised"), then the limit
 // reached (IterationLimit, "no convergence in N <unit>", unit "iterations"

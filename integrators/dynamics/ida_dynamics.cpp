@@ -10,10 +10,7 @@ DynamicsResult solve_dynamics(Objective& objective, const DynamicsOptions& optio
   const Clock::time_point start = Clock::now();
   if (objective.size() == 0) {
     DynamicsResult result;
-    result.status = SolveStatus::Converged;
-    result.reason = "no free unknowns";
-    result.energy = objective.energy();
-    result.stable = true;
+    set_no_unknowns(objective.energy(), result);
     return result;
   }
   DynamicsRun run(objective, options, callbacks, start);

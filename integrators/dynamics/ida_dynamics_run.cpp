@@ -153,15 +153,8 @@ void DynamicsRun::create_integrator() {
 // One step of IDA, and take_step. Returns false when the dynamics stop:
 // the run is finished (result.status set), or the end game is due.
 bool DynamicsRun::advance() {
-  if (callbacks.stop != nullptr && callbacks.stop->load()) {
-    finish(SolveStatus::Interrupted, "stop flag raised");
+  if (stop_or_limit(callbacks.stop, result.iterations, options.stopping.max_steps, "steps", result))
     return false;
-  }
-  if (result.iterations >= options.stopping.max_steps) {
-    finish(SolveStatus::IterationLimit,
-           "no convergence in " + std::to_string(result.iterations) + " steps");
-    return false;
-  }
   evaluator.clear_failures();
   const int flag = IDASolve(integrator->ida.get(), t + 1e10 * time_scale, &t, integrator->y.get(),
                             integrator->yp.get(), IDA_ONE_STEP);

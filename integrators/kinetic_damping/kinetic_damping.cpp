@@ -132,15 +132,9 @@ KineticDampingResult KineticDampingRun::solve() {
 // One leapfrog iteration and its report. Returns false when the run is
 // finished (result.status set).
 bool KineticDampingRun::iterate() {
-  if (callbacks.stop != nullptr && callbacks.stop->load()) {
-    finish(SolveStatus::Interrupted, "stop flag raised");
+  if (stop_or_limit(callbacks.stop, result.iterations, options.max_iterations, "iterations",
+                    result))
     return false;
-  }
-  if (result.iterations >= options.max_iterations) {
-    finish(SolveStatus::IterationLimit,
-           "no convergence in " + std::to_string(result.iterations) + " iterations");
-    return false;
-  }
   const Clock::time_point iteration_start = Clock::now();
   const long iteration = ++result.iterations;
   report = KineticDampingReport{};
@@ -369,10 +363,7 @@ KineticDampingResult solve_kinetic_damping(Objective& objective,
   if (objective.size() == 0) {
     KineticDampingResult result;
     result.mass_safety = options.mass_safety;
-    result.status = SolveStatus::Converged;
-    result.reason = "no free unknowns";
-    result.energy = objective.energy();
-    result.stable = true;
+    set_no_unknowns(objective.energy(), result);
     return result;
   }
   KineticDampingRun run(objective, options, callbacks, start);

@@ -147,10 +147,7 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
   const Clock::time_point start = Clock::now();
   NewtonRun run(callbacks);
   if (!impl_) {  // no unknowns: trivially in equilibrium
-    run.result.status = SolveStatus::Converged;
-    run.result.reason = "no free unknowns";
-    run.result.energy = objective_.energy();
-    run.result.stable = true;
+    set_no_unknowns(objective_.energy(), run.result);
     return run.result;
   }
   impl_->start(run);
