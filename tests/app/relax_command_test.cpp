@@ -7,9 +7,9 @@
 
 #include "command_runner.hpp"
 
-namespace xshell::test {
-
 extern char** environ;
+
+namespace xshell::test {
 
 TEST_CASE("relax: the sample runs and writes summary.json, state.json and the VTK series") {
   const fs::path dir = temporary_directory("sample");
