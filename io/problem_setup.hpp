@@ -5,6 +5,7 @@
 #pragma once
 
 #include "config.hpp"
+#include "input_file.hpp"  // kMaxRodEdges
 #include "linkage/statics_problem.hpp"
 
 namespace xshell {
@@ -15,10 +16,6 @@ struct ProblemSetup {
   LinkageOptions options;
   StaticsSetup statics;  // forces, gravity and supports
 };
-
-// Most rod edges (graph edges x subdivisions) a run may have: far above the
-// largest benchmark grid (1e5 unknowns) and any published design.
-constexpr long kMaxRodEdges = 2000000;
 
 // Throws InputError for vertex indices out of range, for more than
 // kMaxRodEdges rod edges and for "rods" entries that do not apply (see
