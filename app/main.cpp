@@ -4,15 +4,30 @@
 #include <csignal>
 #include <iostream>
 #include <new>
+#include <string>
 
 #include "exit_status.hpp"
 #include "fabricate_command.hpp"
+#include "io/input_error.hpp"
 #include "relax_command.hpp"
 #include "render_command.hpp"
 
 namespace {
 std::atomic<bool> g_stop{false};
 extern "C" void on_signal(int) { g_stop = true; }
+
+// A usage error in the documented form: one line "xshell: error: ...",
+// pointing to the help of the command (`command` empty: of the program).
+int usage_error(const std::string& what, const std::string& command) {
+  std::string line = what;
+  for (char& c : line)  // CLI11 may say it in several lines
+    if (c == '\n') c = ' ';
+  while (!line.empty() && line.back() == ' ') line.pop_back();
+  std::cerr << "xshell: error: " << (command.empty() ? "" : command + ": ")
+            << xshell::printable(line, 2 * xshell::kMaxQuotedChars) << " (see xshell "
+            << (command.empty() ? "" : command + " ") << "--help)\n";
+  return xshell::kExitInvalidInput;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -51,11 +66,23 @@ int main(int argc, char** argv) {
   fabricate_cmd->add_option("--out", fabricate.out,
                             "Output directory (overrides output.directory)");
 
+  // The command first: CLI11 would only say that one is required.
+  const std::string commands = "the commands are relax, render and fabricate";
+  if (argc < 2) return usage_error("no command given; " + commands, "");
+  const std::string first = argv[1];
+  if (first.empty() ||
+      (first[0] != '-' && first != "relax" && first != "render" && first != "fabricate"))
+    return usage_error("unknown command '" + first + "'; " + commands, "");
+  if (first[0] == '-' && first != "-h" && first != "--help" && first != "--version")
+    return usage_error("unknown option '" + first + "' before the command; " + commands, "");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitInvalidInput;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    const std::string command = relax_cmd->parsed()    ? "relax"
+                                : render_cmd->parsed() ? "render"
+                                                       : "";
+    return usage_error(e.what(), command);
   }
   // The commands report every foreseen failure themselves; this is the last
   // net, so that nothing ends in std::terminate (an abort and a core dump).

@@ -1,15 +1,13 @@
 #include "config.hpp"
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
 #include "input_error.hpp"
+#include "input_file.hpp"
 #include "json_field.hpp"
 
 namespace xshell {
@@ -108,6 +106,9 @@ std::string resolve(const std::string& text, const std::string& base_dir) {
 std::string file_path(const JsonField& f, const std::string& base_dir) {
   const std::string text = f.string();
   if (text.empty()) f.fail("must name a file or folder, got an empty string");
+  // The system would read the name only up to the NUL: another file.
+  if (text.find('\0') != std::string::npos)
+    f.fail("a file name cannot contain a NUL byte, got \"" + printable(text) + "\"");
   return resolve(text, base_dir);
 }
 
@@ -185,6 +186,32 @@ std::vector<RodMaterial> read_rods(const JsonField& f, const MaterialConfig& bas
   return rods;
 }
 
+// Whether support `s` holds position component c (0, 1, 2: x, y, z).
+bool holds(const Support& s, int c) {
+  const Fixed roller = c == 0 ? Fixed::X : c == 1 ? Fixed::Y : Fixed::Z;
+  return std::find(s.fix.begin(), s.fix.end(), Fixed::Position) != s.fix.end() ||
+         std::find(s.fix.begin(), s.fix.end(), roller) != s.fix.end();
+}
+
+// Two entries for one vertex that hold the same position component at
+// different displacements: which one wins would be an accident of order.
+void check_conflicts(const JsonField& item, const Support& s, const std::vector<Support>& earlier,
+                     const std::string& list_path) {
+  for (std::size_t i = 0; i < earlier.size(); ++i) {
+    if (earlier[i].vertex != s.vertex) continue;
+    for (int c = 0; c < 3; ++c)
+      if (holds(s, c) && holds(earlier[i], c) && s.displacement[c] != earlier[i].displacement[c]) {
+        std::ostringstream values;
+        values.precision(12);
+        values << earlier[i].displacement[c] << " and " << s.displacement[c];
+        item.fail("vertex " + std::to_string(s.vertex) + " is also held by " + list_path + "[" +
+                  std::to_string(i) + "], and the two displace its " + "xyz"[c] +
+                  " component differently (" + values.str() +
+                  "); give one displacement per vertex (one entry, or equal displacements)");
+      }
+  }
+}
+
 std::vector<Support> read_supports(const JsonField& f) {
   std::vector<Support> supports;
   for (const JsonField& item : f.elements()) {
@@ -217,6 +244,7 @@ std::vector<Support> read_supports(const JsonField& f) {
               name_of(roller, kFixed) + "\" to fix, or give 0");
       }
     }
+    check_conflicts(item, s, supports, f.path());
     supports.push_back(s);
   }
   return supports;
@@ -310,14 +338,15 @@ nlohmann::json toggle_json(Toggle t) {
 }  // namespace
 
 Config parse_config(const std::string& text, const std::string& name, const std::string& base_dir) {
-  const nlohmann::json document = parse_json(text, name);
-  const JsonField root(document, "", name);
+  const std::string shown = printable(name);  // the name as messages quote it
+  const nlohmann::json document = parse_json(text, shown);
+  const JsonField root(document, "", shown);
   if (!document.is_object())
     root.fail("the configuration must be a JSON object { ... }, got " + root.describe());
   root.check_keys({"linkage", "subdivisions", "rest_shape", "joints", "material", "rods",
                    "supports", "loads", "solver", "output", "deployment"});
   Config c;
-  c.source = name;
+  c.source = shown;
   c.linkage = file_path(root.require("linkage"), base_dir);
   if (auto n = root.find("subdivisions")) c.subdivisions = at_least(*n, 3);
   if (auto rest = root.find("rest_shape")) c.rest_shape = rest->choice(kRestShapes);
@@ -334,15 +363,9 @@ Config parse_config(const std::string& text, const std::string& name, const std:
 }
 
 Config read_config(const std::string& path) {
-  std::error_code ignored;  // a folder opens as a stream that fails only when read
-  if (std::filesystem::is_directory(path, ignored))
-    throw InputError("cannot open configuration file '" + path + "': it is a folder, not a file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw InputError("cannot open configuration file '" + path + "': " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_config(text.str(), path, std::filesystem::path(path).parent_path().string());
+  const std::string text = read_input_file(
+      path, kConfigurationFile, "cannot open configuration file '" + printable(path) + "'");
+  return parse_config(text, path, std::filesystem::path(path).parent_path().string());
 }
 
 void check_vertices(const Config& config, const LineGraph& graph) {

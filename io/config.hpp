@@ -98,7 +98,9 @@ struct MaterialConfig {
   CrossSectionConfig cross_section;  // "cross_section", required
 };
 
-// An element of "supports" (default: none).
+// An element of "supports" (default: none). A vertex may appear in several
+// elements, but not two that hold the same position component at different
+// displacements.
 struct Support {
   int vertex = 0;          // "vertex", >= 0, required; 0-based index into the linkage file
   std::vector<Fixed> fix;  // "fix", required: non-empty, no duplicates
@@ -206,8 +208,9 @@ struct Config {
   std::optional<Deployment> deployment;      // "deployment", optional
 };
 
-// Reads the configuration file at `path`; relative paths in it are resolved
-// against the file's folder. Throws InputError.
+// Reads the configuration file at `path` (a regular file of at most
+// kMaxConfigurationFileBytes, see input_file.hpp); relative paths in it are
+// resolved against the file's folder. Throws InputError.
 Config read_config(const std::string& path);
 
 // Parses configuration `text`; `name` stands for the file in messages and

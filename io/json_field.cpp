@@ -4,7 +4,6 @@
 #include <cctype>
 #include <climits>
 #include <cmath>
-#include <set>
 
 #include "input_error.hpp"
 
@@ -24,12 +23,12 @@ std::string quoted_list(const std::vector<std::string>& items) {
 }
 
 // "LINE:COLUMN" (both 1-based) of the character at 1-based byte `byte`, the
-// position nlohmann's parse_error reports.
+// position nlohmann's parser reports.
 std::string line_and_column(const std::string& text, std::size_t byte) {
-  const std::size_t end = std::min(byte > 0 ? byte - 1 : 0, text.size());
-  const std::size_t line = 1 + std::count(text.begin(), text.begin() + end, '\n');
-  const std::size_t line_start = text.rfind('\n', end == 0 ? std::string::npos : end - 1);
-  const std::size_t column = line_start == std::string::npos ? end + 1 : end - line_start;
+  const std::size_t at = std::min(byte > 0 ? byte - 1 : 0, text.size());  // 0-based
+  const std::size_t line = 1 + std::count(text.begin(), text.begin() + at, '\n');
+  const std::size_t line_start = at == 0 ? std::string::npos : text.rfind('\n', at - 1);
+  const std::size_t column = line_start == std::string::npos ? at + 1 : at - line_start;
   return std::to_string(line) + ":" + std::to_string(column);
 }
 
@@ -42,84 +41,145 @@ std::string parse_error_reason(const std::string& what) {
 }
 
 // "; JSON has no NaN or Infinity..." when the word at 1-based byte `byte`
-// (where the parser stopped) spells one of them, else "".
-std::string non_finite_hint(const std::string& text, std::size_t byte) {
+// (where the parser stopped) spells one of them, "; JSON has no comments"
+// when the parser stopped at a '/', else "".
+std::string syntax_hint(const std::string& text, std::size_t byte, const std::string& token) {
+  if (!token.empty() && token.back() == '/')
+    return "; JSON has no comments (// or /* */): remove them";
   auto is_letter = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0; };
   std::size_t begin = std::min(byte > 0 ? byte - 1 : 0, text.size());
   while (begin > 0 && is_letter(text[begin - 1])) --begin;
   std::size_t end = begin;
-  while (end < text.size() && is_letter(text[end])) ++end;
+  while (end < text.size() && end - begin <= 8 && is_letter(text[end])) ++end;
   std::string word = text.substr(begin, end - begin);
   for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (word != "nan" && word != "inf" && word != "infinity") return "";
   return "; JSON has no NaN or Infinity: every number must be finite";
 }
 
-// Follows the parser's events to know the JSON path of each value, to report
-// a key given twice in one object (nlohmann would keep the last silently) and
-// a number that overflows to infinity.
-class PathTracker {
+// Builds the document from the parser's events (nlohmann's SAX interface) in
+// time linear in the text. (nlohmann's parse with a callback, used before,
+// scans every array again at the end of each object in it: quadratic.) It
+// refuses a key given twice in one object (nlohmann would keep the last
+// silently), a number that overflows to infinity, and nesting deeper than
+// kMaxJsonDepth. It knows where it is by a stack of the open arrays and
+// objects, and spells a JSON path only for a message.
+class DocumentBuilder {
  public:
-  explicit PathTracker(const std::string& file) : file_(file) {}
+  using json = nlohmann::json;
+  using number_integer_t = json::number_integer_t;
+  using number_unsigned_t = json::number_unsigned_t;
+  using number_float_t = json::number_float_t;
+  using string_t = json::string_t;
+  using binary_t = json::binary_t;
 
-  bool on_event(nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
-    using Event = nlohmann::json::parse_event_t;
-    switch (event) {
-      case Event::object_start:
-      case Event::array_start:
-        open_.push_back({event == Event::array_start, next_path(), 0, "", {}});
-        break;
-      case Event::object_end:
-      case Event::array_end:
-        open_.pop_back();
-        break;
-      case Event::key: {
-        Open& object = open_.back();
-        object.key = parsed.get<std::string>();
-        if (!object.keys.insert(object.key).second)
-          throw InputError(file_ + ": " + join(object.path, object.key) +
-                           ": key given twice in the same object");
-        break;
-      }
-      case Event::value: {
-        const std::string path = next_path();
-        if (parsed.is_number_float() && !std::isfinite(parsed.get<double>()))
-          throw InputError(prefix(path) + "number out of range (it overflows to infinity)");
-        break;
-      }
-    }
+  DocumentBuilder(json& root, const std::string& text, const std::string& file)
+      : root_(root), text_(text), file_(file) {}
+
+  bool null() { return add(nullptr); }
+  bool boolean(bool value) { return add(value); }
+  bool number_integer(number_integer_t value) { return add(value); }
+  bool number_unsigned(number_unsigned_t value) { return add(value); }
+  bool number_float(number_float_t value, const string_t& literal) {
+    if (!std::isfinite(value)) overflow(literal);
+    return add(value);
+  }
+  bool string(string_t& value) { return add(std::move(value)); }
+  bool binary(binary_t& value) { return add(json::binary(std::move(value))); }
+
+  bool start_object(std::size_t) { return open(json::value_t::object); }
+  bool key(string_t& key) {
+    Open& object = open_.back();
+    object.key = key;
+    auto& members = object.value->get_ref<json::object_t&>();
+    const auto [slot, inserted] = members.emplace(key, nullptr);
+    if (!inserted) throw InputError(prefix(pending_path()) + "key given twice in the same object");
+    object.member = &slot->second;
     return true;
   }
+  bool end_object() { return close(); }
+  bool start_array(std::size_t) { return open(json::value_t::array); }
+  bool end_array() { return close(); }
 
-  // The path of the value being read.
-  std::string pending_path() const {
-    if (open_.empty()) return "";
-    const Open& parent = open_.back();
-    if (parent.array) return parent.path + "[" + std::to_string(parent.count) + "]";
-    return join(parent.path, parent.key);
-  }
-
-  // "FILE: PATH: " ("FILE: " for the document).
-  std::string prefix(const std::string& path) const {
-    return file_ + ": " + (path.empty() ? "" : path + ": ");
+  template <class Exception>
+  bool parse_error(std::size_t byte, const std::string& token, const Exception& e) {
+    // 406: a number literal beyond the range of double ("1e999").
+    if (e.id == 406) overflow(token);
+    const std::string reason = parse_error_reason(e.what());
+    throw InputError(file_ + ":" + line_and_column(text_, byte) + ": invalid JSON: " +
+                     printable(reason, 2 * kMaxQuotedChars) + syntax_hint(text_, byte, token));
   }
 
  private:
   struct Open {
-    bool array;
-    std::string path;
-    int count;                   // elements so far (arrays)
-    std::string key;             // the key being read (objects)
-    std::set<std::string> keys;  // keys so far (objects)
+    json* value;             // the array or object
+    std::string key;         // objects: the key of the member being read
+    json* member = nullptr;  // objects: that member
   };
 
-  // The path of the value that starts now; counts it in its array.
-  std::string next_path() {
-    std::string path = pending_path();
-    if (!open_.empty() && open_.back().array) ++open_.back().count;
+  template <typename Value>
+  json* place(Value&& value) {
+    if (open_.empty()) {
+      root_ = json(std::forward<Value>(value));
+      return &root_;
+    }
+    Open& parent = open_.back();
+    if (parent.value->is_array()) {
+      auto& elements = parent.value->get_ref<json::array_t&>();
+      elements.emplace_back(std::forward<Value>(value));
+      return &elements.back();
+    }
+    *parent.member = json(std::forward<Value>(value));
+    return parent.member;
+  }
+  template <typename Value>
+  bool add(Value&& value) {
+    place(std::forward<Value>(value));
+    return true;
+  }
+
+  bool open(json::value_t type) {
+    if (open_.size() >= kMaxJsonDepth)
+      throw InputError(prefix(pending_path()) + "arrays and objects nested deeper than " +
+                       std::to_string(kMaxJsonDepth) + " levels");
+    json* value = place(type);
+    open_.push_back({value, {}, nullptr});
+    return true;
+  }
+  bool close() {
+    open_.pop_back();
+    return true;
+  }
+
+  [[noreturn]] void overflow(const std::string& literal) const {
+    throw InputError(prefix(pending_path()) + "number " + printable(literal, 40) +
+                     " out of range (it overflows to infinity)");
+  }
+
+  // The path of the value being read: in an array still open below the top
+  // its last element, in the top array the next one.
+  std::string pending_path() const {
+    std::string path;
+    for (std::size_t level = 0; level < open_.size(); ++level) {
+      const Open& o = open_[level];
+      if (o.value->is_array()) {
+        const std::size_t size = o.value->size();
+        const bool top = level + 1 == open_.size();
+        path += "[" + std::to_string(top ? size : size - 1) + "]";
+      } else {
+        path += (path.empty() ? "" : ".") + o.key;
+      }
+    }
     return path;
   }
 
+  // "FILE: PATH: " ("FILE: " for the document).
+  std::string prefix(const std::string& path) const {
+    return file_ + ": " + (path.empty() ? "" : printable(path) + ": ");
+  }
+
+  json& root_;
+  const std::string& text_;
   const std::string& file_;
   std::vector<Open> open_;
 };
@@ -127,27 +187,10 @@ class PathTracker {
 }  // namespace
 
 nlohmann::json parse_json(const std::string& text, const std::string& file) {
-  PathTracker tracker(file);
-  try {
-    return nlohmann::json::parse(
-        text, [&tracker](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
-          return tracker.on_event(event, parsed);
-        });
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(file + ":" + line_and_column(text, e.byte) + ": invalid JSON: " +
-                     parse_error_reason(e.what()) + non_finite_hint(text, e.byte));
-  } catch (const nlohmann::json::out_of_range& e) {
-    // 406: a number literal beyond the range of double ("1e999"), reported
-    // before the value reaches the tracker.
-    if (e.id != 406) throw;
-    const std::string what = e.what();
-    const std::size_t open = what.find('\''), close = what.rfind('\'');
-    const std::string literal = open < close && close != std::string::npos
-                                    ? " " + what.substr(open + 1, close - open - 1)
-                                    : "";
-    throw InputError(tracker.prefix(tracker.pending_path()) + "number" + literal +
-                     " out of range (it overflows to infinity)");
-  }
+  nlohmann::json document;
+  DocumentBuilder builder(document, text, file);
+  nlohmann::json::sax_parse(text, &builder);
+  return document;
 }
 
 int edit_distance(const std::string& a, const std::string& b) {
@@ -182,8 +225,7 @@ std::string JsonField::describe() const {
     case nlohmann::json::value_t::array:
       return "an array of " + std::to_string(v.size()) + " element(s)";
     case nlohmann::json::value_t::string: {
-      const std::string s = v.get<std::string>();
-      return "a string (" + quoted(s.size() > 40 ? s.substr(0, 40) + "..." : s) + ")";
+      return "a string (" + quoted(printable(v.get_ref<const std::string&>(), 40)) + ")";
     }
     case nlohmann::json::value_t::boolean:
       return std::string("a boolean (") + (v.get<bool>() ? "true" : "false") + ")";
@@ -197,13 +239,20 @@ void JsonField::check_keys(const std::vector<std::string>& valid) const {
   for (const auto& item : value_->items()) {
     const std::string& key = item.key();
     if (std::find(valid.begin(), valid.end(), key) != valid.end()) continue;
-    const auto closest = std::min_element(valid.begin(), valid.end(), [&](auto& a, auto& b) {
-      return edit_distance(key, a) < edit_distance(key, b);
-    });
     const std::string where = path_.empty() ? "at the top level" : "in " + path_;
-    std::string message = file_ + ": unknown key " + quoted(key) + " " + where;
+    std::string message = file_ + ": unknown key " + quoted(printable(key)) + " " + where;
+    // A suggestion is at most a third of the key away; a key that long is
+    // no misspelling of a valid one (and its distances would be costly).
     const int close_enough = std::max(2, static_cast<int>(key.size()) / 3);
-    if (closest != valid.end() && edit_distance(key, *closest) <= close_enough)
+    const std::string* closest = nullptr;
+    int closest_distance = INT_MAX;
+    if (key.size() <= 64)
+      for (const std::string& candidate : valid)
+        if (const int d = edit_distance(key, candidate); d < closest_distance) {
+          closest = &candidate;
+          closest_distance = d;
+        }
+    if (closest && closest_distance <= close_enough)
       message += "; did you mean " + quoted(*closest) + "?";
     else
       message += "; valid keys are " + quoted_list(valid);
@@ -264,7 +313,8 @@ Eigen::Vector3d JsonField::vector3() const {
 }
 
 void JsonField::fail_choice(const std::string& given, const std::vector<std::string>& valid) const {
-  fail(quoted(given) + " is not a valid choice; expected one of " + quoted_list(valid));
+  fail(quoted(printable(given, 40)) + " is not a valid choice; expected one of " +
+       quoted_list(valid));
 }
 
 }  // namespace xshell

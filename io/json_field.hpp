@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -13,9 +14,15 @@
 
 namespace xshell {
 
-// Parses `text` as JSON. Syntax errors are reported as "FILE:LINE:COLUMN:
-// ...", a key repeated within one object and non-finite numbers (a literal
-// such as 1e999 overflows to infinity) with their path.
+// Deepest nesting of arrays and objects parse_json accepts (a configuration
+// nests 5 levels deep, a state file 6).
+constexpr std::size_t kMaxJsonDepth = 64;
+
+// Parses `text` as JSON, in time linear in its length. Syntax errors are
+// reported as "FILE:LINE:COLUMN: ...", a key repeated within one object,
+// non-finite numbers (a literal such as 1e999 overflows to infinity) and
+// nesting deeper than kMaxJsonDepth with their path. `file` is the file's
+// name as messages show it (see printable()).
 nlohmann::json parse_json(const std::string& text, const std::string& file);
 
 // Levenshtein distance: the fewest single-character insertions, deletions

@@ -2,12 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -15,6 +11,7 @@
 #include <string_view>
 
 #include "input_error.hpp"
+#include "input_file.hpp"
 
 namespace xshell {
 namespace {
@@ -30,17 +27,19 @@ std::string where(const std::string& name, int line) {
   throw InputError(where(name, line) + what);
 }
 
-// A token as it appears in a message: quoted, shortened if very long.
-std::string quoted(std::string_view token) {
-  constexpr std::size_t kMax = 40;
-  if (token.size() > kMax) return "'" + std::string(token.substr(0, kMax)) + "...'";
-  return "'" + std::string(token) + "'";
-}
+// A token as it appears in a message: quoted, escaped, shortened if long.
+std::string quoted(std::string_view token) { return "'" + printable(token, 40) + "'"; }
 
 std::string vertex_name(int v) { return "vertex " + std::to_string(v) + " (0-based)"; }
 
 std::string vertex_name(int v, int line) {
   return "vertex " + std::to_string(v) + " (0-based, line " + std::to_string(line) + ")";
+}
+
+std::string number(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
 }
 
 std::string position(const Eigen::Vector3d& p) {
@@ -135,7 +134,18 @@ class ObjParser {
         fail(name_, line, what + " is out of the range of double-precision numbers");
       if (result.ec != std::errc()) fail(name_, line, what + " is not a number");
       if (!std::isfinite(c[i])) fail(name_, line, what + " is not a finite number");
+      if (i < 3 && std::abs(c[i]) > kMaxCoordinate)
+        fail(name_, line,
+             what + " is outside the supported range: coordinates are at most " +
+                 number(kMaxCoordinate) + " in absolute value (choose a larger length unit)");
     }
+    if (out_.graph.vertices.size() > static_cast<std::size_t>(kMaxLinkageSegments))
+      fail(name_, line,
+           "more than " + std::to_string(kMaxLinkageSegments + 1) +
+               " vertices: a linkage may have at most " + std::to_string(kMaxLinkageSegments) +
+               " segments (" + std::to_string(kMaxRodEdges) + " rod edges at " +
+               std::to_string(kMinSubdivisions) + " subdivisions), hence at most " +
+               std::to_string(kMaxLinkageSegments + 1) + " vertices in use");
     out_.graph.vertices.emplace_back(c[0], c[1], c[2]);
     out_.vertex_lines.push_back(line);
   }
@@ -146,6 +156,11 @@ class ObjParser {
     for (std::size_t i = 1; i < tokens.size(); ++i) {
       const int v = index(tokens[i], line);
       if (previous >= 0) {
+        if (out_.graph.edges.size() >= static_cast<std::size_t>(kMaxLinkageSegments))
+          fail(name_, line,
+               "more than " + std::to_string(kMaxLinkageSegments) +
+                   " rod segments: a run may have at most " + std::to_string(kMaxRodEdges) +
+                   " rod edges, and a segment has at least " + std::to_string(kMinSubdivisions));
         out_.graph.edges.push_back({previous, v});
         out_.edge_lines.push_back(line);
       }
@@ -214,7 +229,7 @@ double bounding_box_diagonal(const std::vector<Eigen::Vector3d>& x) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  return (hi - lo).norm();
+  return (hi - lo).stableNorm();  // no underflow for a linkage 1e-300 across
 }
 
 void check_edge_lengths(const ObjLineGraph& g, double tolerance, const std::string& name) {
@@ -295,7 +310,12 @@ void check_graph(const ObjLineGraph& g, const std::string& name) {
     throw InputError(name + ": no rod segments: a linkage needs at least one 'l' line");
   check_self_loops(g, name);
   check_duplicate_edges(g, name);
-  const double tolerance = 1e-12 * bounding_box_diagonal(g.graph.vertices);
+  const double size = bounding_box_diagonal(g.graph.vertices);
+  if (size < kMinLinkageSize)
+    throw InputError(name + ": the linkage measures " + number(size) +
+                     " across (its bounding-box diagonal); at least " + number(kMinLinkageSize) +
+                     " is supported: choose a smaller length unit");
+  const double tolerance = 1e-12 * size;
   check_edge_lengths(g, tolerance, name);
   check_coincident_vertices(g, tolerance, name);
   check_valences(g, name);
@@ -304,20 +324,34 @@ void check_graph(const ObjLineGraph& g, const std::string& name) {
 
 }  // namespace
 
-ObjLineGraph parse_obj_with_lines(std::istream& in, const std::string& name) {
+ObjLineGraph parse_obj_text(std::string_view text, const std::string& name) {
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // UTF-8 byte order mark
   ObjParser parser(name);
-  std::string text;
   int line = 0;
-  while (std::getline(in, text)) {
-    ++line;
-    if (!text.empty() && text.back() == '\r') text.pop_back();              // CRLF files
-    if (line == 1 && text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);  // UTF-8 mark
-    parser.parse_line(text, line);
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    std::size_t end = text.find_first_of("\r\n", begin);
+    if (end == std::string_view::npos) end = text.size();
+    parser.parse_line(text.substr(begin, end - begin), ++line);
+    // A line ends with LF, CRLF or CR alone.
+    begin = end + (text.substr(end, 2) == "\r\n" ? 2 : 1);
   }
-  if (in.bad()) throw InputError(name + ": read error after line " + std::to_string(line));
   ObjLineGraph g = parser.finish();
   check_graph(g, name);
   return g;
+}
+
+ObjLineGraph parse_obj_with_lines(std::istream& in, const std::string& name) {
+  std::string text;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxLinkageFileBytes)
+      throw InputError(name + ": more than " + std::to_string(kMaxLinkageFileBytes) +
+                       " bytes; a linkage file may have at most that many");
+  }
+  if (in.bad()) throw InputError(name + ": read error");
+  return parse_obj_text(text, name);
 }
 
 LineGraph parse_obj(std::istream& in, const std::string& name) {
@@ -325,13 +359,10 @@ LineGraph parse_obj(std::istream& in, const std::string& name) {
 }
 
 ObjLineGraph read_obj_with_lines(const std::string& path) {
-  // A folder opens as a stream that fails only when read: say what it is.
-  std::error_code ignored;
-  if (std::filesystem::is_directory(path, ignored))
-    throw InputError("cannot open linkage file '" + path + "': it is a folder, not a file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open linkage file '" + path + "': " + std::strerror(errno));
-  return parse_obj_with_lines(in, path);
+  const std::string shown = printable(path);  // the name as messages quote it
+  const std::string text =
+      read_input_file(path, kLinkageFile, "cannot open linkage file '" + shown + "'");
+  return parse_obj_text(text, shown);
 }
 
 LineGraph read_obj(const std::string& path) { return read_obj_with_lines(path).graph; }

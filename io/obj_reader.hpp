@@ -5,12 +5,16 @@
 // the edges i-j, j-k, ...). Indices are 1-based; a negative index counts back
 // from the last vertex defined so far, as OBJ defines; "i/t" and "i/t/n"
 // forms are accepted and only the vertex index is used. Comments (#), blank
-// lines and the statements o, g, s, vt, vn, mtllib, usemtl are skipped.
+// lines and the statements o, g, s, vt, vn, mtllib, usemtl are skipped. Lines
+// end with LF, CRLF or CR alone.
 //
 // The reader accepts only a graph the model can be built from and otherwise
 // throws one InputError whose message reads "FILE:LINE: what is wrong":
 //   - syntax: unknown statements, faces (f), unparsable or non-finite
 //     numbers, too few or too many coordinates, indices 0 or out of range;
+//   - limits (input_file.hpp): a file larger than kMaxLinkageFileBytes,
+//     more than kMaxLinkageSegments edges, a coordinate beyond
+//     kMaxCoordinate, a linkage smaller than kMinLinkageSize across;
 //   - edges: self-loops, duplicates (in either orientation), zero length;
 //   - vertices: two at the same position (within 1e-12 of the bounding-box
 //     diagonal), valence 0 (isolated) or above 4 (a scissor joint joins at
@@ -22,6 +26,7 @@
 
 #include <istream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "linkage/graph.hpp"
@@ -42,9 +47,10 @@ struct ObjLineGraph {
 LineGraph read_obj(const std::string& path);
 ObjLineGraph read_obj_with_lines(const std::string& path);
 
-// Parses and checks OBJ text from `in`; `name` stands for the file in
-// messages.
+// Parses and checks OBJ text from `in` (or `text`); `name` stands for the
+// file in messages, as they show it (see printable()).
 LineGraph parse_obj(std::istream& in, const std::string& name);
 ObjLineGraph parse_obj_with_lines(std::istream& in, const std::string& name);
+ObjLineGraph parse_obj_text(std::string_view text, const std::string& name);
 
 }  // namespace xshell

@@ -22,6 +22,29 @@ SupportDof to_support(Fixed f) {
   }
   return SupportDof::Position;
 }
+// Supports that cannot apply to their vertex, named by their key (the model
+// would refuse them too, but in words about the linkage, not the
+// configuration): an opening angle fixed at a free rod end, or at an
+// edge-vector joint (which has no opening-angle unknown).
+void check_support_kinds(const Config& config, const LineGraph& graph) {
+  const std::vector<int> valence = valences(graph);
+  for (std::size_t i = 0; i < config.supports.size(); ++i) {
+    const Support& s = config.supports[i];
+    for (std::size_t k = 0; k < s.fix.size(); ++k) {
+      if (s.fix[k] != Fixed::OpeningAngle) continue;
+      const std::string key = config.source + ": supports[" + std::to_string(i) + "].fix[" +
+                              std::to_string(k) + "]: \"opening_angle\": ";
+      if (valence[s.vertex] == 1)
+        throw InputError(key + "vertex " + std::to_string(s.vertex) +
+                         " is a free rod end, which has no opening angle to fix");
+      if (config.joints == JointModel::EdgeVectors)
+        throw InputError(key +
+                         "edge-vector joints (\"joints\": \"edge_vectors\") have no "
+                         "opening-angle unknown; fix \"orientation\" (both rod directions, "
+                         "hence the angle too) or use \"joints\": \"rotation\"");
+    }
+  }
+}
 }  // namespace
 
 Material model_material(const MaterialConfig& m) {
@@ -81,6 +104,7 @@ std::vector<Material> segment_materials(const Config& config, const LineGraph& g
 
 ProblemSetup make_problem_setup(const Config& config, const LineGraph& graph) {
   check_vertices(config, graph);
+  check_support_kinds(config, graph);
   // A linkage far beyond any machine's memory is refused here, with the key
   // to change, rather than failing in an allocation (or the kernel's OOM killer).
   const double rod_edges = static_cast<double>(graph.edges.size()) * config.subdivisions;

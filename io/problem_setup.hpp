@@ -5,6 +5,7 @@
 #pragma once
 
 #include "config.hpp"
+#include "input_file.hpp"  // kMaxRodEdges
 #include "linkage/statics_problem.hpp"
 
 namespace xshell {
@@ -16,13 +17,11 @@ struct ProblemSetup {
   StaticsSetup statics;  // forces, gravity and supports
 };
 
-// Most rod edges (graph edges x subdivisions) a run may have: far above the
-// largest benchmark grid (1e5 unknowns) and any published design.
-constexpr long kMaxRodEdges = 2000000;
-
-// Throws InputError for vertex indices out of range, for more than
-// kMaxRodEdges rod edges and for "rods" entries that do not apply (see
-// segment_materials); ModelError when the graph is no linkage.
+// Throws InputError for vertex indices out of range, for a support that
+// cannot apply (an opening angle held at a free rod end or at edge-vector
+// joints), for more than kMaxRodEdges rod edges and for "rods" entries that
+// do not apply (see segment_materials); ModelError when the graph is no
+// linkage.
 ProblemSetup make_problem_setup(const Config& config, const LineGraph& graph);
 
 // The model's material of a configuration's material.

@@ -1,15 +1,15 @@
 #include "state_file.hpp"
 
-#include <cerrno>
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "atomic_file.hpp"
 #include "input_error.hpp"
+#include "input_file.hpp"
+#include "json_field.hpp"
 
 namespace xshell {
 
@@ -17,11 +17,6 @@ namespace {
 using nlohmann::json;
 
 json vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
-
-Eigen::Vector3d to_vec(const json& j) {
-  if (!j.is_array() || j.size() != 3) throw std::invalid_argument("expected a 3-vector");
-  return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
-}
 
 const char* rest_name(RestShape r) { return r == RestShape::Input ? "input" : "straight"; }
 
@@ -102,55 +97,261 @@ void write_state(const std::string& path, const RodLinkage& linkage,
   write_file_atomically(path, doc.dump() + "\n");
 }
 
-void read_state(const std::string& path, RodLinkage& linkage, const Eigen::Vector3d& origin) {
-  std::error_code ignored;  // a folder opens as a stream that fails only when read
-  if (std::filesystem::is_directory(path, ignored))
-    throw InputError(path + ": cannot read the state file: it is a folder, not a file");
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot read the state file: " + std::strerror(errno));
-  json doc;
-  try {
-    doc = json::parse(in);
-  } catch (const json::exception& e) {
-    throw InputError(path + ": not a valid state file (" + e.what() + ")");
+namespace {
+
+// Reads and checks the values of a state document. Messages name the JSON
+// path ("segments[3].nodes[7]"), spelled only when one is reported: a state
+// holds millions of values.
+class StateReader {
+ public:
+  StateReader(const std::string& name, double size) : name_(name), size_(size) {}
+
+  template <typename Path>
+  [[noreturn]] void fail(const Path& path, const std::string& what) const {
+    throw InputError(name_ + ": " + printable(path()) + ": " + what);
   }
+
+  template <typename Path>
+  const json& member(const json& object, const char* key, const Path& path) const {
+    if (!object.is_object()) fail(path, "expected an object, got " + type_of(object));
+    const auto it = object.find(key);
+    if (it == object.end()) fail(path, std::string("missing key \"") + key + "\"");
+    return *it;
+  }
+
+  template <typename Path>
+  const json& array(const json& value, const Path& path) const {
+    if (!value.is_array()) fail(path, "expected an array, got " + type_of(value));
+    return value;
+  }
+
+  template <typename Path>
+  double number(const json& value, const Path& path) const {
+    if (!value.is_number()) fail(path, "expected a number, got " + type_of(value));
+    const double x = value.get<double>();
+    if (!std::isfinite(x)) fail(path, "not a finite number");
+    return x;
+  }
+
+  template <typename Path>
+  std::vector<double> numbers(const json& value, const Path& path) const {
+    std::vector<double> out;
+    out.reserve(array(value, path).size());
+    for (std::size_t k = 0; k < value.size(); ++k)
+      out.push_back(number(value[k], [&] { return path() + "[" + std::to_string(k) + "]"; }));
+    return out;
+  }
+
+  template <typename Path>
+  Eigen::Vector3d vector3(const json& value, const Path& path) const {
+    if (!value.is_array() || value.size() != 3)
+      fail(path, "expected an array of three numbers, got " + type_of(value));
+    Eigen::Vector3d v;
+    for (int c = 0; c < 3; ++c)
+      v[c] = number(value[c], [&] { return path() + "[" + std::to_string(c) + "]"; });
+    return v;
+  }
+
+  // A position: within the coordinates a linkage may have.
+  template <typename Path>
+  Eigen::Vector3d point(const json& value, const Path& path) const {
+    const Eigen::Vector3d p = vector3(value, path);
+    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate)
+      fail(path, "a coordinate beyond " + text(kMaxCoordinate) +
+                     " in absolute value, the largest a linkage may have");
+    return p;
+  }
+
+  // A direction: of unit length.
+  template <typename Path>
+  Eigen::Vector3d unit(const json& value, const Path& path) const {
+    const Eigen::Vector3d v = vector3(value, path);
+    if (std::abs(v.norm() - 1.0) > kFrameTolerance)
+      fail(path, "not a unit vector (length " + text(v.norm()) + ")");
+    return v;
+  }
+
+  template <typename Path>
+  void orthogonal(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Path& path) const {
+    if (std::abs(a.dot(b)) > kFrameTolerance)
+      fail(path, "the frame's vectors are not orthogonal (dot product " + text(a.dot(b)) + ")");
+  }
+
+  // A segment's nodes: no edge shorter than the OBJ reader's zero length.
+  template <typename Path>
+  void distinct(const std::vector<Eigen::Vector3d>& nodes, const Path& path) const {
+    for (std::size_t i = 0; i + 1 < nodes.size(); ++i)
+      if ((nodes[i + 1] - nodes[i]).norm() <= 1e-12 * size_)
+        fail(path, "nodes " + std::to_string(i) + " and " + std::to_string(i + 1) +
+                       " coincide: an edge of zero length");
+  }
+
+  static std::string text(double x) {
+    std::ostringstream s;
+    s << x;
+    return s.str();
+  }
+
+ private:
+  // Frames are written to 17 digits; folds and updates keep them orthonormal
+  // to round-off. Anything further off was not written by xshell.
+  static constexpr double kFrameTolerance = 1e-6;
+
+  static std::string type_of(const json& value) {
+    switch (value.type()) {
+      case json::value_t::null:
+        return "null";
+      case json::value_t::object:
+        return "an object";
+      case json::value_t::array:
+        return "an array of " + std::to_string(value.size());
+      case json::value_t::string:
+        return "a string";
+      case json::value_t::boolean:
+        return "a boolean";
+      default:
+        return "a number";
+    }
+  }
+
+  const std::string& name_;
+  double size_;  // the linkage's bounding-box diagonal
+};
+
+double diagonal(const std::vector<Eigen::Vector3d>& x) {
+  Eigen::Vector3d lo = x.front(), hi = x.front();
+  for (const auto& p : x) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).norm();
+}
+
+SegmentState read_segment(const StateReader& r, const json& s, std::size_t index,
+                          const Eigen::Vector3d& shift) {
+  const std::string at = "segments[" + std::to_string(index) + "]";
+  const auto path = [&](const char* key) { return [&at, key] { return at + "." + key; }; };
+  SegmentState seg;
+  const json& nodes = r.array(r.member(s, "nodes", [&] { return at; }), path("nodes"));
+  seg.nodes.reserve(nodes.size());
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+    seg.nodes.push_back(
+        r.point(nodes[k], [&] { return at + ".nodes[" + std::to_string(k) + "]"; }) + shift);
+  r.distinct(seg.nodes, path("nodes"));
+  seg.thetas = r.numbers(r.member(s, "thetas", [&] { return at; }), path("thetas"));
+  const json& frames =
+      r.array(r.member(s, "source_frames", [&] { return at; }), path("source_frames"));
+  seg.source_frames.reserve(frames.size());
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const auto frame = [&] { return at + ".source_frames[" + std::to_string(k) + "]"; };
+    const Eigen::Vector3d tangent =
+        r.unit(r.member(frames[k], "tangent", frame), [&] { return frame() + ".tangent"; });
+    const Eigen::Vector3d d1 =
+        r.unit(r.member(frames[k], "d1", frame), [&] { return frame() + ".d1"; });
+    r.orthogonal(tangent, d1, frame);
+    seg.source_frames.push_back({tangent, d1});
+  }
+  seg.twist_hints = r.numbers(r.member(s, "twist_hints", [&] { return at; }), path("twist_hints"));
+  return seg;
+}
+
+JointState read_joint(const StateReader& r, const json& j, std::size_t index, int vertex,
+                      JointKind kind, const Eigen::Vector3d& shift) {
+  const std::string at = "joints[" + std::to_string(index) + "]";
+  const auto where = [&at] { return at; };
+  if (const auto v = j.is_object() ? j.find("vertex") : j.end();
+      v != j.end() && (!v->is_number_integer() || *v != vertex))
+    r.fail([&] { return at + ".vertex"; },
+           "expected vertex " + std::to_string(vertex) + ", the joint's vertex in this linkage");
+  JointState js;
+  js.kind = kind;
+  const json& params = r.member(j, "params", where);
+  const auto params_path = [&at] { return at + ".params"; };
+  const std::vector<double> p = r.numbers(params, params_path);
+  if (p.size() != 9)
+    r.fail(params_path, "a joint needs 9 parameters, got " + std::to_string(p.size()));
+  for (int k = 0; k < 9; ++k) {
+    if (std::abs(p[k]) > kMaxCoordinate)
+      r.fail([&] { return at + ".params[" + std::to_string(k) + "]"; },
+             "out of range: " + StateReader::text(p[k]));
+    js.params[k] = p[k];
+  }
+  js.params.segment<3>(kPosition) += shift;
+  const json& frame = r.member(j, "reference_frame", where);
+  const auto frame_path = [&at] { return at + ".reference_frame"; };
+  if (!frame.is_array() || frame.size() != 3)
+    r.fail(frame_path, "expected three vectors [[...], [...], [...]]");
+  for (int c = 0; c < 3; ++c)
+    js.reference_frame.col(c) =
+        r.unit(frame[c], [&] { return frame_path() + "[" + std::to_string(c) + "]"; });
+  const Eigen::Matrix3d& f = js.reference_frame;
+  if (kind == JointKind::Rotation) {
+    // [b1 b2 n0]: a rotation.
+    const double error = (f.transpose() * f - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+    if (error > 1e-6 || f.determinant() < 0)
+      r.fail(frame_path, "not a rotation (orthonormal and right-handed): |R^T R - I| = " +
+                             StateReader::text(error) +
+                             ", det R = " + StateReader::text(f.determinant()));
+  } else {
+    // [t0_A t0_B n0]: the normal orthogonal to both directions.
+    r.orthogonal(f.col(0), f.col(2), frame_path);
+    r.orthogonal(f.col(1), f.col(2), frame_path);
+  }
+  return js;
+}
+
+}  // namespace
+
+void restore_state(const std::string& text, const std::string& name, RodLinkage& linkage,
+                   const Eigen::Vector3d& origin) {
+  const json doc = parse_json(text, name);
+  if (!doc.is_object() || doc.value("format", "") != "xshell-state")
+    throw InputError(name + ": not an xshell state file");
   try {
-    if (doc.value("format", "") != "xshell-state")
-      throw InputError(path + ": not an xshell state file");
     const json expected = fingerprint(linkage);
     if (doc.at("fingerprint") != expected)
-      throw InputError(path + ": the state belongs to another linkage (its fingerprint " +
-                       doc.at("fingerprint").dump() + " differs from this run's " +
+      throw InputError(name + ": the state belongs to another linkage (its fingerprint " +
+                       printable(doc.at("fingerprint").dump()) + " differs from this run's " +
                        expected.dump() + ")");
-    const Eigen::Vector3d saved_origin = to_vec(doc.at("origin"));
+    const double size = diagonal(linkage.graph().vertices);
+    const StateReader r(name, size);
+    // The same graph has the same bounding-box centre: the saved origin is
+    // this run's (to round-off).
+    const Eigen::Vector3d saved_origin =
+        r.point(doc.at("origin"), [] { return std::string("origin"); });
+    if ((saved_origin - origin).norm() > 1e-9 * std::max(size, origin.norm()))
+      r.fail([] { return std::string("origin"); },
+             "not this linkage's origin (the centre of its bounding box)");
     const Eigen::Vector3d shift = saved_origin - origin;  // zero for the same graph
     LinkageState state;
     const JointKind kind = joint_kind(doc);
-    for (const json& s : doc.at("segments")) {
-      SegmentState seg;
-      for (const json& x : s.at("nodes")) seg.nodes.push_back(to_vec(x) + shift);
-      seg.thetas = s.at("thetas").get<std::vector<double>>();
-      for (const json& f : s.at("source_frames"))
-        seg.source_frames.push_back({to_vec(f.at("tangent")), to_vec(f.at("d1"))});
-      seg.twist_hints = s.at("twist_hints").get<std::vector<double>>();
-      state.segments.push_back(std::move(seg));
-    }
-    for (const json& j : doc.at("joints")) {
-      JointState js;
-      js.kind = kind;
-      const std::vector<double> p = j.at("params").get<std::vector<double>>();
-      if (p.size() != 9) throw std::invalid_argument("a joint needs 9 parameters");
-      for (int k = 0; k < 9; ++k) js.params[k] = p[k];
-      js.params.segment<3>(kPosition) += shift;
-      for (int c = 0; c < 3; ++c) js.reference_frame.col(c) = to_vec(j.at("reference_frame").at(c));
-      state.joints.push_back(js);
+    const json& segments = r.array(doc.at("segments"), [] { return std::string("segments"); });
+    for (std::size_t s = 0; s < segments.size(); ++s)
+      state.segments.push_back(read_segment(r, segments[s], s, shift));
+    const json& joints = r.array(doc.at("joints"), [] { return std::string("joints"); });
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      const int vertex =
+          j < linkage.topology().joints.size() ? linkage.topology().joints[j].vertex : -1;
+      state.joints.push_back(read_joint(r, joints[j], j, vertex, kind, shift));
     }
     linkage.restore(state);
+    // What the checks above cannot see (a rod folded back on itself, a twist
+    // of 1e300 radians) shows in the energy a run would start from.
+    if (!std::isfinite(linkage.energy().total()))
+      throw InputError(name + ": the state's elastic energy is not finite (a rod folded back " +
+                       "on itself, or values beyond any physical range)");
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {
-    throw InputError(path + ": malformed state file (" + e.what() + ")");
+    throw InputError(name + ": malformed state file (" + printable(e.what()) + ")");
   }
+}
+
+void read_state(const std::string& path, RodLinkage& linkage, const Eigen::Vector3d& origin) {
+  const std::string shown = printable(path);  // the name as messages quote it
+  const std::string text =
+      read_input_file(path, kStateFile, shown + ": cannot read the state file");
+  restore_state(text, shown, linkage, origin);
 }
 
 }  // namespace xshell

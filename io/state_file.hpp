@@ -31,8 +31,20 @@ std::string graph_hash(const LineGraph& graph);
 // Writes the state atomically; throws OutputError.
 void write_state(const std::string& path, const RodLinkage& linkage, const Eigen::Vector3d& origin);
 
-// Reads a state written for `linkage` and restores it. Throws InputError when
-// the file is unreadable or malformed, or belongs to another linkage.
+// Reads a state written for `linkage` and restores it. `origin` is this
+// run's (the input's bounding-box centre). Throws InputError when the file
+// cannot be read (see read_input_file: a regular file of at most
+// kMaxStateFileBytes), is no JSON or no state, belongs to another linkage,
+// or holds a value that xshell would not have written: a number that is not
+// finite, a coordinate beyond kMaxCoordinate, an origin other than this
+// run's, a segment edge of zero length, a source frame or a joint's
+// reference frame that is not orthonormal (to 1e-6), a joint of another
+// vertex, or a state whose elastic energy is not finite.
 void read_state(const std::string& path, RodLinkage& linkage, const Eigen::Vector3d& origin);
+
+// The same from the file's `text`; `name` stands for the file in messages,
+// as they show it (see printable()).
+void restore_state(const std::string& text, const std::string& name, RodLinkage& linkage,
+                   const Eigen::Vector3d& origin);
 
 }  // namespace xshell

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets of the OBJ and configuration readers with clang
-# (and ASan/UBSan) into build-fuzz/ and runs each for a bounded time
+# Builds the libFuzzer targets of the OBJ, configuration and state readers with
+# clang (and ASan/UBSan) into build-fuzz/ and runs each for a bounded time
 # (FUZZ_SECONDS, default 60) from the corpora in fuzz/corpus (new inputs go
 # to build-fuzz/corpus-*, the repository's corpora stay as they are). Any
 # finding fails the script: a crash, a sanitizer report, an exception other
@@ -11,11 +11,11 @@ bash scripts/install-deps.sh
 seconds="${FUZZ_SECONDS:-60}"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DXSHELL_FUZZ=ON \
   -DXSHELL_BUILD_TESTS=OFF >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target fuzz_obj_reader fuzz_config_reader
+cmake --build build-fuzz -j"$(nproc)" --target fuzz_obj_reader fuzz_config_reader fuzz_state_reader
 export ASAN_OPTIONS=halt_on_error=1:abort_on_error=1:detect_leaks=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 status=0
-for target in obj_reader:obj config_reader:config; do
+for target in obj_reader:obj config_reader:config state_reader:state; do
   name="${target%%:*}"; corpus="${target##*:}"
   work="build-fuzz/corpus-$corpus"
   log="build-fuzz/fuzz_$name.log"

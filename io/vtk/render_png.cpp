@@ -24,23 +24,48 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
-#include <stdexcept>
 
 #include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
 #include "render_error.hpp"
 #include "x_display.hpp"
 
 namespace xshell {
 namespace {
 
+// Silences VTK's error and warning display while it lives: a reader that
+// fails says so on stderr in many lines, where xshell's one line (the
+// InputError) is what the user should see.
+class QuietVtk {
+ public:
+  QuietVtk() : previous_(vtkObject::GetGlobalWarningDisplay()) {
+    vtkObject::GlobalWarningDisplayOff();
+  }
+  ~QuietVtk() { vtkObject::SetGlobalWarningDisplay(previous_); }
+  QuietVtk(const QuietVtk&) = delete;
+  QuietVtk& operator=(const QuietVtk&) = delete;
+
+ private:
+  int previous_;
+};
+
 vtkSmartPointer<vtkPolyData> read_vtp(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path))
-    throw RenderError("render: cannot read '" + path + "': no such file");
+  const std::string cannot = "render: cannot read '" + printable(path) + "'";
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (!std::filesystem::exists(status)) throw InputError(cannot + ": no such file");
+  if (!std::filesystem::is_regular_file(status)) throw InputError(cannot + ": not a regular file");
+  if (std::filesystem::file_size(path, error) == 0)
+    throw InputError(cannot + ": the file is empty");
+  const QuietVtk quiet;
   vtkNew<vtkXMLPolyDataReader> reader;
+  if (!reader->CanReadFile(path.c_str()))
+    throw InputError(cannot + ": not a VTK XML PolyData file (.vtp)");
   reader->SetFileName(path.c_str());
   reader->Update();
-  if (reader->GetErrorCode() != 0 || reader->GetOutput() == nullptr)
-    throw RenderError("render: cannot read '" + path + "' as VTK poly data");
+  if (reader->GetErrorCode() != 0 || reader->GetOutput() == nullptr ||
+      reader->GetOutput()->GetNumberOfPoints() == 0)
+    throw InputError(cannot + ": not a complete VTK PolyData file (truncated or malformed)");
   auto data = vtkSmartPointer<vtkPolyData>::New();
   data->ShallowCopy(reader->GetOutput());
   return data;
@@ -73,7 +98,7 @@ std::vector<vtkSmartPointer<vtkPolyData>> drawable(
       lines.push_back(data);
   }
   if (!surfaces.empty()) return surfaces;
-  if (lines.empty()) throw RenderError("render: no input has polygons or polylines to draw");
+  if (lines.empty()) throw InputError("render: no input has polygons or polylines to draw");
 
   double radius = options.tube_radius;
   if (!(radius > 0.0)) {
@@ -137,12 +162,12 @@ void fit_camera(vtkCamera& camera, const std::vector<vtkSmartPointer<vtkPolyData
 
 void render_png(const std::vector<std::string>& vtp_files, const std::string& png_path,
                 const RenderOptions& options) {
-  if (options.width <= 0 || options.height <= 0)
-    throw std::invalid_argument("render: picture size must be positive, got " +
-                                std::to_string(options.width) + " x " +
-                                std::to_string(options.height));
-  const XDisplay display;  // first: without a display nothing else is worth doing
-
+  const auto side_ok = [](int pixels) { return pixels >= 1 && pixels <= kMaxPictureSide; };
+  if (!side_ok(options.width) || !side_ok(options.height))
+    throw InputError("render: the picture's width and height must be 1 to " +
+                     std::to_string(kMaxPictureSide) + " pixels, got " +
+                     std::to_string(options.width) + " x " + std::to_string(options.height));
+  // The inputs first: bad input is reported as such, display or not.
   std::vector<vtkSmartPointer<vtkPolyData>> inputs;
   for (const std::string& path : vtp_files) inputs.push_back(read_vtp(path));
   const std::vector<vtkSmartPointer<vtkPolyData>> shown = drawable(inputs, options);
@@ -161,8 +186,11 @@ void render_png(const std::vector<std::string>& vtp_files, const std::string& pn
     }
   }
   if (!options.color_array.empty() && !colored)
-    throw RenderError("render: no drawn input has an array named '" + options.color_array + "'");
+    throw InputError("render: no drawn input has an array named '" +
+                     printable(options.color_array) + "' to colour by");
   if (colored && !(range[1] > range[0])) range[1] = range[0] + 1.0;  // constant field
+
+  const XDisplay display;
 
   vtkNew<vtkLookupTable> table;
   table->SetHueRange(0.667, 0.0);  // blue (low) to red (high)
@@ -220,7 +248,7 @@ void render_png(const std::vector<std::string>& vtp_files, const std::string& pn
   vtkUnsignedCharArray* bytes = png->GetResult();
   window->Finalize();  // release GL and X resources before the display closes
   if (bytes == nullptr || bytes->GetNumberOfValues() == 0)
-    throw RenderError("render: VTK produced no PNG data for '" + png_path + "'");
+    throw RenderError("render: VTK produced no PNG data for '" + printable(png_path) + "'");
   write_file_atomically(png_path,
                         std::string_view(reinterpret_cast<const char*>(bytes->GetPointer(0)),
                                          static_cast<size_t>(bytes->GetNumberOfValues())));

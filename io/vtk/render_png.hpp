@@ -17,9 +17,14 @@
 
 namespace xshell {
 
+// Largest width or height of a picture, in pixels (beyond, X servers and
+// OpenGL drivers refuse the window, some with an error that ends the
+// process).
+constexpr int kMaxPictureSide = 8192;
+
 struct RenderOptions {
-  int width = 1024;  // pixels
-  int height = 768;  // pixels
+  int width = 1024;  // pixels, 1 to kMaxPictureSide
+  int height = 768;  // pixels, 1 to kMaxPictureSide
   // Point or cell array to colour by; empty: one colour for everything.
   std::string color_array = "bending_density";
   // Tube radius for polylines (length unit); 0: 0.4% of the bounding-box
@@ -28,10 +33,11 @@ struct RenderOptions {
 };
 
 // vtp_files: .vtp files (rods_*.vtp, solids_*.vtp, ...); png_path: the picture
-// to write (replaced atomically). Throws RenderError when there is no X
-// display, a file cannot be read, no input has polygons or polylines, or no
-// drawn input carries `color_array`; std::invalid_argument for a
-// non-positive size; OutputError naming png_path when it cannot be written.
+// to write (replaced atomically). Throws InputError for bad input (a size out
+// of range, a file that is missing, empty, not VTK PolyData, truncated or
+// malformed, no input with polygons or polylines, no drawn input carrying
+// `color_array`); RenderError when the picture cannot be made (no X display,
+// no renderer); OutputError naming png_path when it cannot be written.
 void render_png(const std::vector<std::string>& vtp_files, const std::string& png_path,
                 const RenderOptions& options = {});
 

@@ -3,6 +3,10 @@
 // output is written. (The readers' own tests check the messages in more
 // detail: tests/io.)
 #include <doctest/doctest.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <functional>
 
 #include "reliability_support.hpp"
 #include "skip.hpp"
@@ -40,13 +44,17 @@ CommandResult relax_config(const Scratch& dir, const std::string& text,
 // The grid sample's configuration with `extra` keys.
 std::string grid_config(const std::string& extra = "") { return config_with(grid_obj(), extra); }
 
-// grid_config() with the first `from` replaced by `to` (which must be there).
-std::string grid_config_replacing(const std::string& from, const std::string& to,
-                                  const std::string& extra = "") {
-  std::string text = grid_config(extra);
+// `text` with the first `from` replaced by `to` (which must be there).
+std::string replacing(std::string text, const std::string& from, const std::string& to) {
   const std::size_t at = text.find(from);
   REQUIRE(at != std::string::npos);
   return text.replace(at, from.size(), to);
+}
+
+// grid_config() with the first `from` replaced by `to` (which must be there).
+std::string grid_config_replacing(const std::string& from, const std::string& to,
+                                  const std::string& extra = "") {
+  return replacing(grid_config(extra), from, to);
 }
 
 const char* const kCross =  // one X joint (vertex 2), four free ends
@@ -207,8 +215,7 @@ TEST_CASE("bad input: an unreadable linkage file (mode 000)") {
   fs::permissions(dir / "locked.obj", fs::perms::none);
   write_text(dir / "run.json", config_with("locked.obj"));
   const CommandResult r = run_xshell_unprivileged("relax run.json", dir.path());
-  if (r.status == -2)
-    XSHELL_SKIP("root without setpriv(1): the unreadable-file case cannot be checked here");
+  if (r.status == -2) XSHELL_SKIP(r.errors + ": the unreadable-file case cannot be checked here");
   check_rejected(r, dir.path(), {"cannot open linkage file 'locked.obj'", "Permission denied"});
 }
 
@@ -233,8 +240,7 @@ TEST_CASE("bad input: an unreadable configuration file (mode 000)") {
   write_text(dir / "run.json", grid_config());
   fs::permissions(dir / "run.json", fs::perms::none);
   const CommandResult r = run_xshell_unprivileged("relax run.json", dir.path());
-  if (r.status == -2)
-    XSHELL_SKIP("root without setpriv(1): the unreadable-file case cannot be checked here");
+  if (r.status == -2) XSHELL_SKIP(r.errors + ": the unreadable-file case cannot be checked here");
   check_rejected(r, dir.path(), {"cannot open configuration file 'run.json'", "Permission denied"});
 }
 
@@ -466,22 +472,196 @@ TEST_CASE("bad input: a deployment with edge-vector joints") {
                  dir.path(), {"run.json: deployment: needs \"joints\": \"rotation\""});
 }
 
-TEST_CASE("bad input: a support that does not apply to its vertex") {
+TEST_CASE("bad input: a support that does not apply to its vertex names its key") {
   Scratch dir("config-support-kind");
-  // Vertex 0 of the grid is a free rod end: it has no opening angle.
+  // Vertex 0 of the grid is a free rod end: it has no opening angle. The
+  // mistake is in the configuration, not in the OBJ.
   check_rejected(
       relax_config(dir, grid_config(R"(, "supports": [{"vertex": 0, "fix": ["opening_angle"]}])")),
-      dir.path(), {"support at vertex 0", "a free rod end has no opening angle"});
+      dir.path(),
+      {"run.json: supports[0].fix[0]: \"opening_angle\": vertex 0 is a free rod end",
+       "has no opening angle"});
+  // Every support fixing everything: the free ends' opening angles.
+  std::string all;
+  for (int v = 0; v < 32; ++v)
+    all += std::string(v ? ", " : "") + "{\"vertex\": " + std::to_string(v) +
+           ", \"fix\": [\"position\", \"orientation\", \"opening_angle\"]}";
+  const CommandResult everything = relax_config(dir, grid_config(", \"supports\": [" + all + "]"));
+  check_rejected(everything, dir.path(), {"run.json: supports[0].fix[2]", "free rod end"});
+  CHECK_FALSE(contains(everything.errors, "grid.obj"));
+  // An opening angle at an edge-vector joint (vertex 12 of the grid).
+  const CommandResult edge_vectors = relax_config(dir, grid_config(R"(, "joints": "edge_vectors",
+  "supports": [{"vertex": 12, "fix": ["position", "opening_angle"]}])"));
+  check_rejected(edge_vectors, dir.path(),
+                 {"run.json: supports[0].fix[1]: \"opening_angle\": edge-vector joints"});
+  CHECK_FALSE(contains(edge_vectors.errors, "grid.obj"));
 }
 
-TEST_CASE("bad input: command-line usage") {
+TEST_CASE("bad input: one vertex in two supports with conflicting displacements names both") {
+  Scratch dir("config-support-twice");
+  check_rejected(relax_config(dir, grid_config(R"(, "supports": [
+    {"vertex": 1, "fix": ["position"], "displacement": [0, 0, 0.01]},
+    {"vertex": 4, "fix": ["position"]},
+    {"vertex": 1, "fix": ["z"], "displacement": [0, 0, -0.01]}])")),
+                 dir.path(),
+                 {"run.json: supports[2]: vertex 1 is also held by supports[0]", "z component"});
+}
+
+TEST_CASE("bad input: command-line usage in one line naming what is wrong") {
   Scratch dir("usage");
   write_text(dir / "run.json", grid_config());
-  CHECK(run_xshell("relax", dir.path()).status == 2);
-  CHECK(run_xshell("relax run.json --no-such-option", dir.path()).status == 2);
-  CHECK(run_xshell("", dir.path()).status == 2);
+  check_rejected(run_xshell("solve run.json", dir.path()), dir.path(),
+                 {"unknown command 'solve'", "relax, render and fabricate", "xshell --help"});
+  check_rejected(run_xshell("", dir.path()), dir.path(), {"no command given"});
+  check_rejected(run_xshell("--fast relax run.json", dir.path()), dir.path(),
+                 {"unknown option '--fast'"});
+  check_rejected(run_xshell("relax", dir.path()), dir.path(),
+                 {"relax: config is required", "xshell relax --help"});
+  check_rejected(run_xshell("relax run.json --no-such-option", dir.path()), dir.path(),
+                 {"relax: ", "--no-such-option"});
+  check_rejected(run_xshell("render", dir.path()), dir.path(), {"render: "});
   check_rejected(run_xshell("relax run.json --solver fastest", dir.path()), dir.path(),
                  {"--solver: unknown solver \"fastest\""});
+  // Help and version still go to stdout with status 0.
+  CHECK(run_xshell("--help", dir.path()).status == 0);
+  CHECK(run_xshell("relax --help", dir.path()).status == 0);
+  CHECK(run_xshell("--version", dir.path()).status == 0);
+}
+
+// ---------------------------------------------------------------------------
+// What is read, and how much: files that are no regular files, sizes,
+// nesting, coordinates, and messages that stay one short line
+
+TEST_CASE("bad input: a FIFO or a device as configuration or linkage or state is refused at once") {
+  Scratch dir("not-regular");
+  REQUIRE(::mkfifo((dir / "fifo.json").c_str(), 0600) == 0);
+  REQUIRE(::mkfifo((dir / "fifo.obj").c_str(), 0600) == 0);
+  write_text(dir / "fifo_linkage.json", config_with("fifo.obj"));
+  write_text(dir / "zero_linkage.json", config_with("/dev/zero"));
+  write_text(dir / "run.json", grid_config());
+  struct Case {
+    std::string args, words;
+  };
+  const std::vector<Case> cases = {
+      {"relax fifo.json", "cannot open configuration file 'fifo.json': it is a FIFO"},
+      {"relax /dev/zero", "cannot open configuration file '/dev/zero': it is a device"},
+      {"relax fifo_linkage.json", "cannot open linkage file 'fifo.obj': it is a FIFO"},
+      {"relax zero_linkage.json", "cannot open linkage file '/dev/zero': it is a device"},
+      {"relax run.json --init fifo.json", "fifo.json: cannot read the state file: it is a FIFO"},
+      {"relax run.json --init /dev/zero", "/dev/zero: cannot read the state file: it is a device"},
+  };
+  int checked = 0;
+  for (const Case& c : cases) {
+    CAPTURE(c.args);
+    // Before, each blocked (a FIFO without a writer) or read without end.
+    check_rejected(run_xshell_limited(c.args, dir.path(), 5), dir.path(), {c.words});
+    ++checked;
+  }
+  CHECK(checked == 6);
+}
+
+TEST_CASE("bad input: a // comment in the configuration gives its true position") {
+  Scratch dir("config-comment");
+  check_rejected(relax_config(dir, "// settings\n" + grid_config()), dir.path(),
+                 {"run.json:1:1: invalid JSON", "JSON has no comments"});
+  check_rejected(relax_config(dir, grid_config_replacing("\"subdivisions\": 4,",
+                                                         "\"subdivisions\": 4, // more?")),
+                 dir.path(), {"run.json:3:22: invalid JSON", "JSON has no comments"});
+}
+
+TEST_CASE("bad input: a configuration nested too deep is refused at once") {
+  Scratch dir("config-nested");
+  // 1.2 MB nested in a key: before, 83 s and 10.6 GB to be rejected.
+  const int depth = 100000;
+  std::string text = R"({"linkage": "grid.obj", "material": )";
+  for (int i = 0; i < depth; ++i) text += R"({"young_modulus": )";
+  text += "1" + std::string(depth, '}') + "}";
+  write_text(dir / "run.json", text);
+  check_rejected(run_xshell_limited("relax run.json", dir.path(), 20), dir.path(),
+                 {"run.json: material.young_modulus.young_modulus", "nested deeper than 64"});
+  write_text(dir / "run.json", std::string(200000, '['));
+  check_rejected(run_xshell_limited("relax run.json", dir.path(), 20), dir.path(),
+                 {"run.json: [0][0]", "nested deeper than 64"});
+}
+
+TEST_CASE("bad input: a NUL byte in the OBJ or in a path is shown escaped") {
+  Scratch dir("nul");
+  const CommandResult obj =
+      relax_obj(dir, std::string("v 0 0 0\nv 1 0\0 0\nv 1 1 0\nl 1 2 3\n", 32));
+  check_rejected(obj, dir.path(), {"bad.obj:2: coordinate '0\\0' is not a number"});
+  CHECK(obj.errors.find('\0') == std::string::npos);
+  const CommandResult path = relax_config(dir, config_with("grid\\u0000.obj"));
+  check_rejected(path, dir.path(),
+                 {"run.json: linkage: a file name cannot contain a NUL byte", "grid\\0.obj"});
+}
+
+TEST_CASE("bad input: an OBJ with CR-only line endings is read line by line") {
+  Scratch dir("obj-cr");
+  std::string text = read_text(grid_obj());
+  std::replace(text.begin(), text.end(), '\n', '\r');
+  write_text(dir / "grid.obj", text);
+  write_text(dir / "run.json", config_with("grid.obj"));
+  const CommandResult r = run_xshell("relax run.json", dir.path());
+  CAPTURE(r.errors);
+  CHECK(r.status == 0);
+}
+
+TEST_CASE("bad input: a long path is quoted shortened in one short line") {
+  Scratch dir("long-path");
+  const std::string path = std::string(1000000, 'p') + "/grid.obj";  // 1 MB
+  const CommandResult r = relax_config(dir, config_with(path));
+  check_rejected(r, dir.path(), {"cannot open linkage file '", "...", "/grid.obj'"});
+  CHECK(r.errors.size() < 400);
+}
+
+TEST_CASE("bad input: coordinates near 1e300 or 1e-300 are refused with the reason") {
+  Scratch dir("obj-extreme");
+  check_rejected(relax_obj(dir, "v -5e299 0 0\nv 1.25e299 0 0\nv 0 1e299 0\nl 1 2 3\n"), dir.path(),
+                 {"bad.obj:1: coordinate '-5e299' is outside the supported range"});
+  check_rejected(relax_obj(dir, "v 0 0 0\nv 1e-300 0 0\nv 1e-300 1e-300 0\nl 1 2 3\n"), dir.path(),
+                 {"bad.obj: the linkage measures", "at least 1e-06"});
+  // 1e-100: before, the run "converged" and then failed writing its outputs.
+  check_rejected(relax_obj(dir, "v 0 0 0\nv 1e-100 0 0\nv 1e-100 1e-100 0\nl 1 2 3\n"), dir.path(),
+                 {"bad.obj: the linkage measures"});
+}
+
+TEST_CASE("bad input: --init with a state xshell would not have written") {
+  Scratch dir("init-invalid");
+  write_text(dir / "run.json", grid_config());
+  REQUIRE(run_xshell("relax run.json --out first", dir.path()).status == 0);
+  const nlohmann::json state = read_json(dir / "first" / "state.json");
+  struct Case {
+    std::string name, words;
+    std::function<void(nlohmann::json&)> change;
+  };
+  const std::vector<Case> cases = {
+      {"frame.json", "frame.json: joints[0].reference_frame: not a rotation",
+       [](nlohmann::json& s) {
+         s["joints"][0]["reference_frame"][1] = {0.0, 0.6, 0.8};
+       }},
+      {"origin.json", "origin.json: origin: a coordinate beyond",
+       [](nlohmann::json& s) {
+         s["origin"] = {1e300, 0, 0};
+       }},
+      {"zero.json", "zero.json: segments[0].nodes: nodes 0 and 1 coincide",
+       [](nlohmann::json& s) {
+         for (auto& segment : s["segments"])
+           for (auto& node : segment["nodes"]) node = {0.0, 0.0, 0.0};
+       }},
+  };
+  int checked = 0;
+  for (const Case& c : cases) {
+    CAPTURE(c.name);
+    nlohmann::json changed = state;
+    c.change(changed);
+    write_text(dir / c.name, changed.dump());
+    check_rejected(run_xshell("relax run.json --init " + c.name, dir.path()), dir.path(),
+                   {c.words});
+    ++checked;
+  }
+  CHECK(checked == 3);
+  // The state as written restarts the run.
+  CHECK(run_xshell("relax run.json --init first/state.json --out again", dir.path()).status == 0);
 }
 
 // ---------------------------------------------------------------------------
@@ -509,17 +689,33 @@ TEST_CASE("bad output: an output directory that is a file") {
   CHECK(read_text(dir / "out") == "not a folder");
 }
 
+TEST_CASE("bad output: a 300-character output folder name gives the system's reason") {
+  Scratch dir("out-long-name");
+  const std::string name(300, 'o');
+  const CommandResult r = relax_config(
+      dir, grid_config_replacing("\"directory\": \"out\"", "\"directory\": \"" + name + "\""));
+  CAPTURE(r.errors);
+  CHECK(r.status == 4);
+  CHECK(r.errors.rfind("xshell: error: ", 0) == 0);
+  CHECK(count_lines(r.errors) == 1);
+  CHECK(contains(r.errors, "': File name too long"));
+  CHECK(r.errors.size() < 400);  // the name quoted shortened
+}
+
 TEST_CASE("bad output: a read-only output directory") {
   Scratch dir("out-read-only");
-  write_text(dir / "run.json",
-             grid_config_replacing("\"directory\": \"out\"", "\"directory\": \"locked/out\""));
+  // The linkage beside the configuration: the unprivileged run may not be
+  // able to read the clone's samples (a clone in a folder only its owner
+  // can enter).
+  fs::copy_file(grid_obj(), dir / "grid.obj");
+  write_text(dir / "run.json", replacing(config_with("grid.obj"), "\"directory\": \"out\"",
+                                         "\"directory\": \"locked/out\""));
   fs::create_directory(dir / "locked");
   fs::permissions(dir / "locked", fs::perms::owner_read | fs::perms::owner_exec |
                                       fs::perms::group_read | fs::perms::group_exec |
                                       fs::perms::others_read | fs::perms::others_exec);
   const CommandResult r = run_xshell_unprivileged("relax run.json", dir.path());
-  if (r.status == -2)
-    XSHELL_SKIP("root without setpriv(1): the read-only case cannot be checked here");
+  if (r.status == -2) XSHELL_SKIP(r.errors + ": the read-only case cannot be checked here");
   CAPTURE(r.errors);
   CHECK(r.status == 4);
   CHECK(contains(r.errors, "locked/out"));
@@ -568,7 +764,7 @@ TEST_CASE("bad input: --init with a missing, truncated or foreign file") {
   const std::string state = read_text(dir / "first" / "state.json");
   write_text(dir / "truncated.json", state.substr(0, state.size() / 2));
   check_rejected(run_xshell("relax run.json --init truncated.json", dir.path()), dir.path(),
-                 {"truncated.json: not a valid state file"});
+                 {"truncated.json:1:", "invalid JSON"});
   check_rejected(run_xshell("relax run.json --init run.json", dir.path()), dir.path(),
                  {"run.json: not an xshell state file"});
   // A state with a segment missing.
@@ -582,7 +778,7 @@ TEST_CASE("bad input: --init with a missing, truncated or foreign file") {
   doc["segments"][0]["thetas"][1] = nullptr;
   write_text(dir / "null.json", doc.dump());
   check_rejected(run_xshell("relax run.json --init null.json", dir.path()), dir.path(),
-                 {"null.json: malformed state file"});
+                 {"null.json: segments[0].thetas[1]: expected a number, got null"});
   fs::create_directory(dir / "folder.json");
   check_rejected(run_xshell("relax run.json --init folder.json", dir.path()), dir.path(),
                  {"folder.json: cannot read the state file: it is a folder"});

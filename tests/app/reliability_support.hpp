@@ -79,14 +79,33 @@ inline std::string grid_obj() { return (fs::path(XSHELL_SAMPLES_DIR) / "grid.obj
 // Whether permission bits bind this process (not for root).
 inline bool permissions_bind() { return ::geteuid() != 0; }
 
+// Whether every folder from the root down to `dir` lets other users through
+// (o+x): else nobody cannot even reach `dir`.
+inline bool reachable_by_others(const fs::path& dir) {
+  for (fs::path p = fs::absolute(dir); !p.empty(); p = p.parent_path()) {
+    std::error_code error;
+    const fs::perms perms = fs::status(p, error).permissions();
+    if (error || (perms & fs::perms::others_exec) == fs::perms::none) return false;
+    if (p == p.root_path()) break;
+  }
+  return true;
+}
+
 // Runs `xshell ARGS` in `dir` as an unprivileged user, so that permission
 // bits bind: directly when the tests do not run as root, else through
 // setpriv(1) as nobody (a copy of the program in `dir`, so that nobody can
 // reach it; without LSAN_OPTIONS, whose suppressions file nobody may not
-// be able to read). Returns status -2 when neither is possible.
+// be able to read). Nobody may not read the clone (a clone in root's home
+// or in a folder made by mktemp -d): every file the run reads must be in
+// `dir`, named relative to it. Returns status -2 and the reason in `errors`
+// when such a run is not possible here.
 inline CommandResult run_xshell_unprivileged(const std::string& args, const fs::path& dir) {
   if (permissions_bind()) return run_xshell(args, dir);
-  if (std::system("command -v setpriv >/dev/null 2>&1") != 0) return {-2, ""};
+  if (std::system("command -v setpriv >/dev/null 2>&1") != 0)
+    return {-2, "root without setpriv(1): no unprivileged run"};
+  if (!reachable_by_others(dir))
+    return {-2, "the scratch folder " + dir.string() +
+                    " is inside a folder other users cannot enter (TMPDIR?): no unprivileged run"};
   const fs::path copy = dir / "xshell-copy";
   fs::copy_file(XSHELL_BINARY, copy, fs::copy_options::overwrite_existing);
   fs::permissions(dir, fs::perms::all & ~fs::perms::group_write & ~fs::perms::others_write);
@@ -101,6 +120,20 @@ inline CommandResult run_xshell_unprivileged(const std::string& args, const fs::
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   r.errors = read_text(err);
   fs::remove(copy);
+  return r;
+}
+
+// Runs `xshell ARGS` in `dir` like run_xshell, killed after `seconds` (a run
+// that blocks or reads forever then ends with status 137).
+inline CommandResult run_xshell_limited(const std::string& args, const fs::path& dir, int seconds) {
+  const fs::path err = dir / "stderr.txt";
+  const std::string command = "cd '" + dir.string() + "' && timeout -s KILL " +
+                              std::to_string(seconds) + " '" + std::string(XSHELL_BINARY) + "' " +
+                              args + " > /dev/null 2> '" + err.string() + "'";
+  const int raw = std::system(command.c_str());
+  CommandResult r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.errors = read_text(err);
   return r;
 }
 

@@ -1,9 +1,12 @@
 #include "io/config.hpp"
 
 #include <doctest/doctest.h>
+#include <sys/stat.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <nlohmann/json.hpp>
 
 #include "io/input_error.hpp"
@@ -563,6 +566,98 @@ TEST_CASE("config: check_vertices names the key of an index out of range") {
   CHECK_THROWS_WITH_AS(check_vertices(c, graph),
                        doctest::Contains("deployment.joint_angles[1].vertex: vertex 100"),
                        InputError);
+}
+
+TEST_CASE("config: one vertex in two supports displaced differently names both entries") {
+  // Different components, or equal displacements: both entries apply.
+  CHECK(parse(with("/supports", {{{"vertex", 1}, {"fix", {"x"}}, {"displacement", {1, 0, 0}}},
+                                 {{"vertex", 1}, {"fix", {"z"}}, {"displacement", {0, 0, 2}}}}))
+            .supports.size() == 2);
+  CHECK(parse(with("/supports", {{{"vertex", 1}, {"fix", {"position"}}},
+                                 {{"vertex", 1}, {"fix", {"orientation"}}}}))
+            .supports.size() == 2);
+  // The same component held at two displacements: which wins would be an
+  // accident of order.
+  check_message(
+      rejection(
+          with("/supports", {{{"vertex", 3}, {"fix", {"position"}}, {"displacement", {0, 0, -0.5}}},
+                             {{"vertex", 1}, {"fix", {"x"}}},
+                             {{"vertex", 3}, {"fix", {"z"}}, {"displacement", {0, 0, 0.25}}}})),
+      {"c.json: supports[2]: vertex 3 is also held by supports[0]", "z component",
+       "-0.5 and 0.25"});
+  check_message(
+      rejection(with("/supports",
+                     {{{"vertex", 3}, {"fix", {"position"}}},
+                      {{"vertex", 3}, {"fix", {"position"}}, {"displacement", {0.1, 0, 0}}}})),
+      {"supports[1]: vertex 3 is also held by supports[0]", "x component"});
+}
+
+TEST_CASE("config: a file name with a NUL byte is refused and not cut short") {
+  const std::string message = rejection(with("/linkage", std::string("grid\0.obj", 9)));
+  check_message(message, {"c.json: linkage: a file name cannot contain a NUL byte", "grid\\0.obj"});
+  CHECK(message.find('\0') == std::string::npos);
+}
+
+TEST_CASE("config: supports that cannot apply are named by their key and not blamed on the OBJ") {
+  LineGraph graph;  // one X joint (vertex 2) and four free ends
+  graph.vertices = {{-1, -1, 0}, {1, 1, 0}, {0, 0, 0}, {1, -1, 0}, {-1, 1, 0}};
+  graph.edges = {{0, 2}, {2, 1}, {3, 2}, {2, 4}};
+  auto setup_error = [&](const json& document) -> std::string {
+    const Config c = parse(document);
+    try {
+      make_problem_setup(c, graph);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    FAIL_CHECK("accepted: " << document.dump());
+    return "";
+  };
+  // Everything fixed at a free end: it has no opening angle.
+  check_message(
+      setup_error(with("/supports",
+                       {{{"vertex", 2}, {"fix", {"position"}}},
+                        {{"vertex", 0}, {"fix", {"position", "orientation", "opening_angle"}}}})),
+      {"c.json: supports[1].fix[2]: \"opening_angle\": vertex 0 is a free rod end"});
+  // An opening angle at an edge-vector joint.
+  json edge_vectors = with("/supports", {{{"vertex", 2}, {"fix", {"opening_angle"}}}});
+  edge_vectors["joints"] = "edge_vectors";
+  check_message(setup_error(edge_vectors),
+                {"c.json: supports[0].fix[0]: \"opening_angle\": edge-vector joints"});
+  // At a rotation joint it applies.
+  const Config fine = parse(with("/supports", {{{"vertex", 2}, {"fix", {"opening_angle"}}}}));
+  CHECK(make_problem_setup(fine, graph).statics.supports.size() == 1);
+}
+
+TEST_CASE("config: read_config refuses a FIFO or a device or an oversized file at once") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "xshell-config-kinds";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  REQUIRE(::mkfifo((dir / "fifo.json").c_str(), 0600) == 0);
+  auto reading = std::async(std::launch::async, [&]() -> std::string {
+    try {
+      read_config((dir / "fifo.json").string());
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(read)";
+  });
+  if (reading.wait_for(std::chrono::seconds(10)) != std::future_status::ready) {
+    FAIL_CHECK("reading a FIFO blocked");
+    std::ofstream(dir / "fifo.json") << "";  // the writer the reader waits for
+  }
+  CHECK(reading.get() == "cannot open configuration file '" + (dir / "fifo.json").string() +
+                             "': it is a FIFO (named pipe), not a regular file");
+  CHECK_THROWS_WITH_AS(read_config("/dev/zero"),
+                       "cannot open configuration file '/dev/zero': it is a device, not a regular "
+                       "file",
+                       InputError);
+  { std::ofstream(dir / "huge.json") << ""; }
+  fs::resize_file(dir / "huge.json", std::uintmax_t{257} << 20);  // sparse: no disk
+  CHECK_THROWS_WITH_AS(read_config((dir / "huge.json").string()),
+                       doctest::Contains("a configuration file may have at most 268435456"),
+                       InputError);
+  fs::remove_all(dir);
 }
 
 }  // namespace xshell::test

@@ -2,6 +2,9 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <chrono>
+
 #include "io/input_error.hpp"
 
 namespace xshell::test {
@@ -66,6 +69,113 @@ TEST_CASE("json_field: accessors check types and name the path") {
   CHECK_THROWS_WITH_AS(root.require("missing"), "f.json: missing required key \"missing\"",
                        InputError);
   CHECK_FALSE(root.find("missing").has_value());
+}
+
+TEST_CASE("json_field: a comment is not JSON and is reported where it starts") {
+  // The error at the first byte: the column used to wrap around below 1.
+  CHECK_THROWS_WITH_AS(parse_json("// a comment\n{\"a\": 1}\n", "f.json"),
+                       doctest::Contains("f.json:1:1: invalid JSON"), InputError);
+  CHECK_THROWS_WITH_AS(parse_json("// a comment\n{}", "f.json"),
+                       doctest::Contains("JSON has no comments"), InputError);
+  CHECK_THROWS_WITH_AS(parse_json("{\"a\": 1, /* two */ \"b\": 2}", "f.json"),
+                       doctest::Contains("f.json:1:10: invalid JSON"), InputError);
+}
+
+TEST_CASE("json_field: nesting deeper than 64 levels is refused with its path") {
+  auto nested = [](int depth) {
+    std::string text;
+    for (int i = 0; i < depth; ++i) text += "{\"k\": [";
+    text += "1";
+    for (int i = 0; i < depth; ++i) text += "]}";
+    return text;
+  };
+  CHECK_NOTHROW(parse_json(nested(32), "f.json"));  // 64 levels
+  CHECK_THROWS_WITH_AS(parse_json(nested(33), "f.json"), doctest::Contains("f.json: k[0].k[0]"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(parse_json(nested(33), "f.json"),
+                       doctest::Contains("nested deeper than 64 levels"), InputError);
+  // 200 KB of '[': refused at once, not read into a document.
+  const auto start = std::chrono::steady_clock::now();
+  CHECK_THROWS_WITH_AS(parse_json(std::string(200000, '['), "f.json"),
+                       doctest::Contains("f.json: [0][0][0]"), InputError);
+  CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(2));
+}
+
+namespace {
+// Seconds to parse `text`, the best of three.
+double parse_seconds(const std::string& text) {
+  double best = 1e9;
+  for (int run = 0; run < 3; ++run) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto document = parse_json(text, "f.json");
+    best = std::min(
+        best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    CHECK(document.size() == 1);
+  }
+  return best;
+}
+}  // namespace
+
+TEST_CASE("json_field: parsing time grows linearly with an array of objects") {
+  // nlohmann's parse with a callback scanned the whole array again at the
+  // end of each object in it: 4 times the forces took 16 times as long.
+  auto forces = [](int n) {
+    std::string text = "{\"forces\": [";
+    for (int i = 0; i < n; ++i)
+      text += std::string(i ? "," : "") + "{\"vertex\": 13, \"force\": [0, 0, -1.5]}";
+    return text + "]}";
+  };
+  const double small = parse_seconds(forces(20000));
+  const double large = parse_seconds(forces(80000));
+  INFO("20000 forces: " << small << " s, 80000: " << large << " s");
+  CHECK(large < 8 * small + 0.05);
+}
+
+TEST_CASE("json_field: paths are spelled only for messages") {
+  // 60 levels of keys of 4000 characters with 20000 values at the bottom:
+  // a path spelled per value would copy 240 KB 20000 times.
+  std::string text;
+  for (int i = 0; i < 60; ++i) text += "{\"" + std::string(4000, 'a' + i % 26) + "\": ";
+  text += "[";
+  for (int i = 0; i < 20000; ++i) text += std::string(i ? "," : "") + "1";
+  text += "]" + std::string(60, '}');
+  const auto start = std::chrono::steady_clock::now();
+  CHECK_NOTHROW(parse_json(text, "f.json"));
+  CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(2));
+  // And a message quotes such a path shortened.
+  const std::string bad = text.substr(0, text.size() - 61) + ",1e999]" + std::string(60, '}');
+  try {
+    parse_json(bad, "f.json");
+    FAIL_CHECK("accepted");
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    CHECK(message.size() < 400);
+    CHECK(message.find("[20000]: number 1e999 out of range") != std::string::npos);
+  }
+}
+
+TEST_CASE("json_field: messages quote user text escaped and shortened") {
+  const std::string key = std::string("bad\0key", 7) + std::string(100000, 'x');
+  const nlohmann::json document = {{key, 1}};
+  const JsonField root(document, "", "f.json");
+  try {
+    root.check_keys({"linkage"});
+    FAIL_CHECK("accepted");
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    CHECK(message.rfind("f.json: unknown key \"bad\\0key", 0) == 0);
+    CHECK(message.size() < 400);
+  }
+  const nlohmann::json value = {{"s", std::string("line\nbreak") + std::string(1000, 'y')}};
+  const JsonField s = JsonField(value, "", "f.json").require("s");
+  CHECK_THROWS_WITH_AS(s.number(), doctest::Contains("got a string (\"line\\nbreak"), InputError);
+  try {
+    s.choice(std::vector<std::pair<int, std::string>>{{1, "one"}});
+    FAIL_CHECK("accepted");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find('\n') == std::string::npos);
+    CHECK(std::string(e.what()).size() < 200);
+  }
 }
 
 }  // namespace xshell::test

@@ -1,14 +1,17 @@
 #include "io/obj_reader.hpp"
 
 #include <doctest/doctest.h>
+#include <sys/stat.h>
 
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <map>
 #include <sstream>
 
 #include "io/input_error.hpp"
+#include "io/input_file.hpp"
 #include "skip.hpp"
 
 namespace xshell::test {
@@ -224,6 +227,102 @@ TEST_CASE("obj: rejects a file without edges") {
     CHECK(message.rfind("t.obj: ", 0) == 0);
     CHECK(contains(message, "no rod segments"));
   }
+}
+
+// ---------------------------------------------------------------------------
+// Line endings, limits and messages
+
+TEST_CASE("obj: lines end with LF or CRLF or CR alone") {
+  const std::string lines[] = {"v 0 0 0", "v 1 0 0", "v 1 1 0", "# a comment", "l 1 2", "l 2 3"};
+  int checked = 0;
+  for (const std::string end : {"\n", "\r\n", "\r"}) {
+    std::string text;
+    for (const auto& line : lines) text += line + end;
+    CAPTURE(text);
+    const auto g = parse(text);
+    CHECK(g.graph.vertices.size() == 3);
+    CHECK(g.graph.edges.size() == 2);
+    CHECK(g.edge_lines == std::vector<int>{5, 6});
+    ++checked;
+  }
+  CHECK(checked == 3);
+  // Mixed, and errors name the right line.
+  check_message(rejection("v 0 0 0\rv 1 0 0\r\nv 1 x 0\nl 1 2\r"), 3, {"'x'"});
+}
+
+TEST_CASE("obj: coordinates beyond 1e12 or a linkage smaller than 1e-6 are refused") {
+  check_message(rejection("v 0 0 0\nv 1.5e12 0 0\nl 1 2\n"), 2,
+                {"coordinate '1.5e12' is outside the supported range", "1e+12"});
+  check_message(rejection("v -5e299 -3.75e299 0\nv 1 0 0\nl 1 2\n"), 1,
+                {"coordinate '-5e299' is outside"});
+  CHECK_NOTHROW(parse("v 0 0 0\nv 1e12 -1e12 0\nl 1 2\n"));
+  // Points 1e-300 apart: their distance squared underflows to zero, which
+  // read as a zero-length edge between two distinct points.
+  const std::string tiny = rejection("v 1e-300 0 0\nv 2e-300 0 0\nl 1 2\n");
+  CHECK(tiny.rfind("t.obj: the linkage measures 1e-300 across", 0) == 0);
+  CHECK(contains(tiny, "at least 1e-06"));
+  CHECK_NOTHROW(parse("v 0 0 0\nv 1e-6 0 0\nl 1 2\n"));
+  // A tiny coordinate in a linkage of normal size is fine (round-off zeros).
+  CHECK_NOTHROW(parse("v 6.1e-17 0 0\nv 1 0 0\nl 1 2\n"));
+}
+
+TEST_CASE("obj: more segments or vertices than a run may have are refused while reading") {
+  std::string text = "v 0 0 0\nv 1 0 0\nl";
+  for (long i = 0; i <= kMaxLinkageSegments + 1; ++i) text += i % 2 ? " 2" : " 1";
+  check_message(rejection(text + "\n"), 3,
+                {"more than " + std::to_string(kMaxLinkageSegments) + " rod segments"});
+  std::string vertices;
+  for (long i = 0; i < kMaxLinkageSegments + 2; ++i) vertices += "v 0 0 0\n";
+  check_message(rejection(vertices), static_cast<int>(kMaxLinkageSegments + 2),
+                {"more than " + std::to_string(kMaxLinkageSegments + 1) + " vertices"});
+}
+
+TEST_CASE("obj: a NUL byte or a long token is quoted escaped and short") {
+  const std::string message = rejection(std::string("v 0 0 0\nv 1 0\0 0\nl 1 2\n", 23));
+  check_message(message, 2, {"coordinate '0\\0' is not a number"});
+  CHECK(message.find('\0') == std::string::npos);
+  const std::string long_token = rejection("v 0 0 0\nv 1 " + std::string(100000, '9') + "x 0\n");
+  CHECK(long_token.size() < 200);
+  check_message(long_token, 2, {"...", "9x'"});
+}
+
+TEST_CASE("obj: read_obj refuses a FIFO or a device or an oversized file at once") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "xshell-obj-kinds";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  REQUIRE(::mkfifo((dir / "fifo.obj").c_str(), 0600) == 0);
+  auto reading = std::async(std::launch::async, [&]() -> std::string {
+    try {
+      read_obj((dir / "fifo.obj").string());
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(read)";
+  });
+  if (reading.wait_for(std::chrono::seconds(10)) != std::future_status::ready) {
+    FAIL_CHECK("reading a FIFO blocked");
+    std::ofstream(dir / "fifo.obj") << "";  // the writer the reader waits for
+  }
+  CHECK(reading.get() == "cannot open linkage file '" + (dir / "fifo.obj").string() +
+                             "': it is a FIFO (named pipe), not a regular file");
+  CHECK_THROWS_WITH_AS(read_obj("/dev/zero"),
+                       "cannot open linkage file '/dev/zero': it is a device, not a regular file",
+                       InputError);
+  { std::ofstream(dir / "huge.obj") << ""; }
+  fs::resize_file(dir / "huge.obj", std::uintmax_t{257} << 20);  // sparse: no disk
+  CHECK_THROWS_WITH_AS(read_obj((dir / "huge.obj").string()),
+                       doctest::Contains("a linkage file may have at most 268435456"), InputError);
+  // A path quoted in full would make a message as long as the path.
+  const std::string long_path = "/" + std::string(100000, 'd') + "/grid.obj";
+  try {
+    read_obj(long_path);
+    FAIL_CHECK("accepted");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).size() < 300);
+    CHECK(contains(e.what(), "/grid.obj': File name too long"));
+  }
+  fs::remove_all(dir);
 }
 
 // ---------------------------------------------------------------------------

@@ -1,7 +1,7 @@
 // Headless PNG rendering. The picture itself needs an X display: CI runs the
 // suite under `xvfb-run -a`; without a display that case only prints a
 // MESSAGE. The error paths (no display, unreachable display, bad input) are
-// checked everywhere.
+// checked everywhere: bad input is found before the display is opened.
 #include "io/vtk/render_png.hpp"
 
 #include <doctest/doctest.h>
@@ -12,10 +12,13 @@
 #include <vtkUnsignedCharArray.h>
 
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <set>
 
 #include "demo_snapshot.hpp"
+#include "io/input_error.hpp"
 #include "io/vtk/render_error.hpp"
 #include "io/vtk/rods_file.hpp"
 #include "io/vtk/solids_file.hpp"
@@ -146,15 +149,61 @@ TEST_CASE("render: solids and tubes to a non-trivial PNG (needs a display)") {
   CHECK(checks == 9);
 }
 
-TEST_CASE("render: bad input is a RenderError (needs a display)") {
-  if (!display_variable_set()) XSHELL_SKIP("DISPLAY is not set: no input checks of render_png");
+TEST_CASE("render: bad input is an InputError with or without a display and draws nothing") {
   ScratchDir dir("render_bad");
   const auto [rods, solids] = demo_files(dir);
   const std::string png = (dir.path() / "p.png").string();
-  CHECK_THROWS_AS(render_png({(dir.path() / "missing.vtp").string()}, png), RenderError);
-  CHECK_THROWS_AS(render_png({rods}, png, {64, 48, "no_such_array", 0.0}), RenderError);
-  CHECK_THROWS_AS(render_png({rods}, png, {0, 48, "", 0.0}), std::invalid_argument);
+  const std::string text = [&] {
+    std::ifstream in(rods, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  REQUIRE(text.size() > 100);
+  const auto truncated = dir.path() / "truncated.vtp";
+  std::ofstream(truncated, std::ios::binary) << text.substr(0, text.size() / 2);
+  const auto garbage = dir.path() / "garbage.vtp";
+  {
+    std::ofstream out(garbage, std::ios::binary);
+    for (int i = 0; i < 4096; ++i) out << static_cast<char>((i * 37 + 11) % 256);
+  }
+  const auto empty = dir.path() / "empty.vtp";
+  std::ofstream(empty) << "";
+  const auto json = dir.path() / "summary.vtp";
+  std::ofstream(json) << "{\"status\": \"converged\"}";
+  struct Case {
+    std::vector<std::string> files;
+    RenderOptions options;
+    std::string words;
+  };
+  const std::vector<Case> cases = {
+      {{(dir.path() / "missing.vtp").string()}, {}, "no such file"},
+      {{dir.path().string()}, {}, "not a regular file"},
+      {{empty.string()}, {}, "the file is empty"},
+      {{garbage.string()}, {}, "not a VTK XML PolyData file"},
+      {{json.string()}, {}, "not a VTK XML PolyData file"},
+      {{truncated.string()}, {}, "truncated.vtp"},
+      {{rods}, {64, 48, "no_such_array", 0.0}, "no drawn input has an array named"},
+      {{rods}, {0, 48, "", 0.0}, "must be 1 to 8192 pixels, got 0 x 48"},
+      {{rods}, {64, -1, "", 0.0}, "got 64 x -1"},
+      {{rods}, {100000, 48, "", 0.0}, "got 100000 x 48"},
+  };
+  int checked = 0;
+  for (const Case& c : cases) {
+    CAPTURE(c.words);
+    CHECK_THROWS_WITH_AS(render_png(c.files, png, c.options), doctest::Contains(c.words.c_str()),
+                         InputError);
+    ++checked;
+  }
+  CHECK(checked == 10);
   CHECK_FALSE(std::filesystem::exists(png));
+}
+
+TEST_CASE("render: the largest picture side is drawn (needs a display)") {
+  if (!display_variable_set()) XSHELL_SKIP("DISPLAY is not set: no picture");
+  ScratchDir dir("render_large");
+  const auto [rods, solids] = demo_files(dir);
+  const auto png = dir.path() / "wide.png";
+  render_png({solids}, png.string(), {kMaxPictureSide, 16, "", 0.0});
+  CHECK(read_png(png).width == kMaxPictureSide);
 }
 
 }  // namespace xshell::test
