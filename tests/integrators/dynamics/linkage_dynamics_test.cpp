@@ -98,7 +98,9 @@ TEST_CASE("Damped dynamics reaches Newton's equilibrium on linkages, its energy 
       const std::string form_name =
           form == DynamicsForm::SecondOrder ? "second order" : "first order";
       CAPTURE(form_name);
-      LinkageProblem by_newton(RodLinkage(c.graph, options(c.rest)), c.setup);
+      LinkageOptions o = options(c.rest);
+      o.clamped_ends = clamped_free_ends(c.graph, c.setup.supports);
+      LinkageProblem by_newton(RodLinkage(c.graph, o), c.setup);
       LinkageProblem by_dynamics = by_newton;
       LinkageObjective newton_objective(by_newton), dynamics_objective(by_dynamics);
       const NewtonResult n = solve_newton(newton_objective, newton_options());
@@ -161,6 +163,7 @@ LinkageProblem column(double load, double lateral) {
   StaticsSetup s;
   s.supports = {{0, {SupportDof::Orientation}}};
   s.forces = {{1, Eigen::Vector3d(-load, 0.0, lateral)}};
+  o.clamped_ends = clamped_free_ends(g, s.supports);
   return LinkageProblem(RodLinkage(g, o), s);
 }
 }  // namespace
@@ -191,7 +194,8 @@ TEST_CASE("Beyond Euler's load Newton stops on the saddle, dynamics with an impe
   const double k = 0.5 * (lo + hi);
   const double expected = 2.0 * k / elliptic_k(k);
   const double deflection = buckled.vertex_positions()[1].z();
-  CHECK(deflection == doctest::Approx(expected).epsilon(0.05));
+  // (40 edges, the clamp at the vertex: 0.1 % short.)
+  CHECK(deflection == doctest::Approx(expected).epsilon(0.005));
   // Newton from the same imperfection agrees with dynamics.
   LinkageProblem by_newton = column(load, 1e-4 * load);
   LinkageObjective newton_objective(by_newton);
