@@ -73,6 +73,14 @@ LinkageOptions options(RestShape rest) {
   return o;
 }
 
+// The problem of a case, its linkage built with the free ends that the
+// case's supports clamp.
+LinkageProblem case_problem(const Case& c) {
+  LinkageOptions o = options(c.rest);
+  o.clamped_ends = clamped_free_ends(c.graph, c.setup.supports);
+  return LinkageProblem(RodLinkage(c.graph, o), c.setup);
+}
+
 NewtonOptions newton_options() {
   NewtonOptions n;
   n.gradient_tolerance = 1e-8;
@@ -98,9 +106,7 @@ TEST_CASE("Damped dynamics reaches Newton's equilibrium on linkages, its energy 
       const std::string form_name =
           form == DynamicsForm::SecondOrder ? "second order" : "first order";
       CAPTURE(form_name);
-      LinkageOptions o = options(c.rest);
-      o.clamped_ends = clamped_free_ends(c.graph, c.setup.supports);
-      LinkageProblem by_newton(RodLinkage(c.graph, o), c.setup);
+      LinkageProblem by_newton = case_problem(c);
       LinkageProblem by_dynamics = by_newton;
       LinkageObjective newton_objective(by_newton), dynamics_objective(by_dynamics);
       const NewtonResult n = solve_newton(newton_objective, newton_options());
@@ -312,10 +318,7 @@ using ProblemList = std::vector<ComparedProblem>;
 // The linkages of this file, the bundled samples and, when present, two real graphs.
 ProblemList timing_problems() {
   ProblemList problems;
-  for (const Case& c : cases())
-    problems.push_back(
-        {c.name, [c] { return LinkageProblem(RodLinkage(c.graph, options(c.rest)), c.setup); },
-         1e-8});
+  for (const Case& c : cases()) problems.push_back({c.name, [c] { return case_problem(c); }, 1e-8});
   problems.push_back({"column 40 edges, 1.2 P_cr",
                       [] { return column(1.2 * M_PI * M_PI / 4.0, 1.2e-4 * M_PI * M_PI / 4.0); },
                       1e-8});
