@@ -137,6 +137,9 @@ ProblemSetup make_problem_setup(const Config& config, const LineGraph& graph) {
     for (Fixed f : s.fix) vs.fix.push_back(to_support(f));
     setup.statics.supports.push_back(vs);
   }
+  // A clamped free end's end edge is centred on its vertex when the linkage
+  // is built (docs/model.md section 8.2).
+  setup.options.clamped_ends = clamped_free_ends(setup.graph, setup.statics.supports);
   setup.statics.gravity = config.loads.gravity;
   for (const PointForce& f : config.loads.forces)
     setup.statics.forces.push_back({f.vertex, f.force});

@@ -35,12 +35,17 @@ JointKind joint_kind(const json& doc) {
   throw std::invalid_argument("unknown \"joint_kind\": \"" + name + "\"");
 }
 
+// "clamped_ends" only where the linkage clamps some free end (which changes
+// its end edges' layout), so that states of unclamped linkages written before
+// clamps were centred on their vertices still match.
 json fingerprint(const RodLinkage& linkage) {
-  return {{"vertices", linkage.graph().vertices.size()},
-          {"edges", linkage.graph().edges.size()},
-          {"subdivisions", linkage.options().subdivisions},
-          {"rest_shape", rest_name(linkage.options().rest_shape)},
-          {"graph_hash", graph_hash(linkage.graph())}};
+  json out = {{"vertices", linkage.graph().vertices.size()},
+              {"edges", linkage.graph().edges.size()},
+              {"subdivisions", linkage.options().subdivisions},
+              {"rest_shape", rest_name(linkage.options().rest_shape)},
+              {"graph_hash", graph_hash(linkage.graph())}};
+  if (!linkage.options().clamped_ends.empty()) out["clamped_ends"] = linkage.options().clamped_ends;
+  return out;
 }
 }  // namespace
 

@@ -17,8 +17,8 @@
 //   gradient_tolerance
 //   energy            {total, stretching, bending, twisting, external}; external =
 //                     -sum f . (x - x_input), included in total
-//   vertices          per graph vertex in file order: [x, y, z] of a joint's position or a
-//                     free end's end node
+//   vertices          per graph vertex in file order: [x, y, z] of a joint's position, a
+//                     free end's end node or a clamped free end's end edge midpoint
 //   opening_angles    per vertex, radians; null for free ends
 //   default_support   the vertex pinned when no support was given, else null
 //   history           per iteration/step: {iteration, time, energy, gradient_norm, step,

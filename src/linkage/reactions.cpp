@@ -6,14 +6,39 @@ namespace xshell {
 
 namespace {
 
-// Moment of a rigid rotation of the free end's clamped edge (header).
+// Moment about the vertex of a rigid rotation of the free end's clamped
+// edge, whose midpoint the vertex is (header).
 Eigen::Vector3d clamp_moment(const ElasticRod& rod, int edge, bool at_start,
-                             const Eigen::VectorXd& g_next, double g_theta) {
+                             const Eigen::Vector3d& g_end, const Eigen::Vector3d& g_next,
+                             double g_theta) {
   const Eigen::Vector3d e = at_start ? rod.edge(edge) : Eigen::Vector3d(-rod.edge(edge));
   const Eigen::Vector3d t = rod.tangent(edge);  // the theta's edge, in its own direction
   const Eigen::Vector3d t_source = rod.source_frames()[edge].tangent;
   const Eigen::Vector3d kh = 2.0 * t_source.cross(t) / (1.0 + t_source.dot(t));
-  return e.cross(Eigen::Vector3d(g_next)) + g_theta * (t + 0.5 * t.cross(kh));
+  return 0.5 * e.cross(Eigen::Vector3d(g_next - g_end)) + g_theta * (t + 0.5 * t.cross(kh));
+}
+
+// The reaction at a free rod end f from the total energy's gradient g:
+// the held components of the end node's force, or at a clamped end the
+// force and moment of the whole clamped edge (header).
+void free_end_reaction(const LinkageProblem& problem, const Eigen::VectorXd& g,
+                       const RodLinkage::FreeEnd& f, SupportReaction& r) {
+  const RodLinkage& l = problem.linkage();
+  const ElasticRod& rod = l.segment(f.segment);
+  auto reduced_gradient = [&](int full) { return g[l.reduced_index(f.segment, full)]; };
+  Eigen::Vector3d g_end, g_next;
+  for (int c = 0; c < 3; ++c) g_end[c] = reduced_gradient(3 * f.end_node + c);
+  if (!f.clamped) {
+    for (int c = 0; c < 3; ++c) {
+      const int i = l.reduced_index(f.segment, 3 * f.end_node + c);
+      if (i >= 0 && problem.is_fixed(i)) r.force[c] = g_end[c];
+    }
+    return;
+  }
+  for (int c = 0; c < 3; ++c) g_next[c] = reduced_gradient(3 * f.next_node + c);
+  r.force = g_end + g_next;
+  r.moment =
+      clamp_moment(rod, f.edge, f.at_start, g_end, g_next, reduced_gradient(rod.theta_dof(f.edge)));
 }
 
 }  // namespace
@@ -57,24 +82,7 @@ std::vector<SupportReaction> support_reactions(const LinkageProblem& problem) {
       }
       continue;
     }
-    const RodLinkage::FreeEnd f = l.free_end(support.vertex);
-    const int s = f.segment, end = f.end_node, next = f.next_node, edge = f.edge;
-    const bool at_start = f.at_start;
-    const ElasticRod& rod = l.segment(s);
-    auto reduced_gradient = [&](int full) { return g[l.reduced_index(s, full)]; };
-    auto fixed = [&](int full) {
-      const int i = l.reduced_index(s, full);
-      return i >= 0 && problem.is_fixed(i);
-    };
-    for (int c = 0; c < 3; ++c)
-      if (fixed(3 * end + c)) r.force[c] = reduced_gradient(3 * end + c);
-    for (SupportDof dof : support.fix) {
-      if (dof != SupportDof::Orientation) continue;
-      Eigen::Vector3d g_next;
-      for (int c = 0; c < 3; ++c) g_next[c] = reduced_gradient(3 * next + c);
-      r.force += g_next;
-      r.moment = clamp_moment(rod, edge, at_start, g_next, reduced_gradient(rod.theta_dof(edge)));
-    }
+    free_end_reaction(problem, g, l.free_end(support.vertex), r);
   }
   return out;
 }

@@ -17,9 +17,11 @@
 //    angle (internal to the joint: equal and opposite on the two rods, so
 //    it is no external moment and does not enter the balance);
 //  - free rod end, "position": force = g_(x_end) (fixed components);
-//    "orientation" (a clamp of the end edge x_end, x_next, theta): force
-//    = g_(x_end) + g_(x_next), moment about x_end
-//    = e x g_(x_next) + g_theta (t + t x kh / 2), e = x_next - x_end,
+//    "orientation" (a clamp of the end edge x_end, x_next, theta, centred
+//    on the vertex v = (x_end + x_next) / 2): force = g_(x_end) + g_(x_next),
+//    moment about v
+//    = e / 2 x (g_(x_next) - g_(x_end)) + g_theta (t + t x kh / 2),
+//    e = x_next - x_end,
 //    t = e_j / |e_j| of the end edge j, kh the curvature binormal from the
 //    edge's source tangent (the twist that time-parallel transport adds,
 //    vertex_stencil.hpp).

@@ -1,5 +1,6 @@
 #include "rod_linkage.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
@@ -32,10 +33,12 @@ double theta_for_normal(const Frame<double>& ref, const Eigen::Vector3d& n) {
   return std::atan2(-n.dot(ref.d1.values()), n.dot(ref.d2.values()));
 }
 
-// Rejects fewer than kMinSubdivisions edges per segment, and a list of
-// segment materials that is not one per segment.
-void check_options(const LinkageOptions& options, int num_segments) {
+// Rejects fewer than kMinSubdivisions edges per segment, a list of segment
+// materials that is not one per segment, and a clamped end that is no free
+// rod end.
+void check_options(const LinkageOptions& options, const LinkageTopology& topology) {
   const int n = options.subdivisions;
+  const int num_segments = static_cast<int>(topology.segments.size());
   if (n < kMinSubdivisions)
     throw ModelError("subdivisions must be at least " + std::to_string(kMinSubdivisions) +
                      ", got " + std::to_string(n));
@@ -43,6 +46,31 @@ void check_options(const LinkageOptions& options, int num_segments) {
       static_cast<int>(options.segment_materials.size()) != num_segments)
     throw ModelError("segment materials: " + std::to_string(options.segment_materials.size()) +
                      " given for " + std::to_string(num_segments) + " segments");
+  const int nv = static_cast<int>(topology.joint_of_vertex.size());
+  for (int v : options.clamped_ends)
+    if (v < 0 || v >= nv || topology.joint_of_vertex[v] >= 0)
+      throw ModelError("vertex " + std::to_string(v) +
+                       " is no free rod end (valence 1), so it cannot be a clamped end");
+}
+
+// Whether `vertex` is a clamped free end (options.clamped_ends is sorted).
+bool clamped(const LinkageOptions& options, int vertex) {
+  return std::binary_search(options.clamped_ends.begin(), options.clamped_ends.end(), vertex);
+}
+
+// Per end of a segment, whether its end edge is centred on the vertex: at a
+// joint and at a clamped free end (docs/model.md section 3.2).
+std::array<bool, 2> centred_ends(const SegmentTopology& seg, const LinkageOptions& options) {
+  return {seg.joint[0] >= 0 || clamped(options, seg.vertex[0]),
+          seg.joint[1] >= 0 || clamped(options, seg.vertex[1])};
+}
+
+// The uniform edge length that fills the segment: L / (n - k / 2), k its
+// number of centred ends (each reaches half an edge past its vertex).
+double nominal_edge_length(const SegmentTopology& seg, const LinkageOptions& options) {
+  const std::array<bool, 2> centred = centred_ends(seg, options);
+  const int centred_count = centred[0] + centred[1];
+  return seg.length / (options.subdivisions - 0.5 * centred_count);
 }
 
 // The joints in topology order, their terminal edges as long as the uniform
@@ -50,14 +78,9 @@ void check_options(const LinkageOptions& options, int num_segments) {
 // segments there).
 std::vector<Joint> build_joints(const LineGraph& graph, const LinkageTopology& topology,
                                 const LinkageOptions& options) {
-  const int n = options.subdivisions;
   const int ns = static_cast<int>(topology.segments.size());
   std::vector<double> edge_length(ns);
-  for (int s = 0; s < ns; ++s) {
-    const SegmentTopology& seg = topology.segments[s];
-    const int joint_ends = (seg.joint[0] >= 0) + (seg.joint[1] >= 0);
-    edge_length[s] = seg.length / (n - 0.5 * joint_ends);
-  }
+  for (int s = 0; s < ns; ++s) edge_length[s] = nominal_edge_length(topology.segments[s], options);
   std::vector<Joint> joints;
   for (const JointTopology& jt : topology.joints) {
     double l[2];
@@ -80,22 +103,37 @@ std::vector<Joint> build_joints(const LineGraph& graph, const LinkageTopology& t
   return joints;
 }
 
-// The n + 1 nodes of segment s: its terminal edges at joints centred on
-// them, a free end's node on its vertex, the others evenly spaced between.
+// The end edge of segment seg at `side` when it is centred on the vertex:
+// the joint's terminal edge (times the segment's sign), or at a clamped free
+// end the nominal edge along the segment.
+Eigen::Vector3d centred_end_edge(const LineGraph& graph, const SegmentTopology& seg,
+                                 const std::vector<Joint>& joints, const LinkageOptions& options,
+                                 int side) {
+  if (seg.joint[side] >= 0) return seg.sign[side] * joints[seg.joint[side]].edge(seg.label[side]);
+  const Eigen::Vector3d along = graph.vertices[seg.vertex[1]] - graph.vertices[seg.vertex[0]];
+  return nominal_edge_length(seg, options) / along.norm() * along;
+}
+
+// The n + 1 nodes of segment s: its end edges at joints and at clamped free
+// ends centred on their vertices, another free end's node on its vertex, the
+// others evenly spaced between.
 std::vector<Eigen::Vector3d> segment_nodes(const LineGraph& graph, const SegmentTopology& seg,
-                                           const std::vector<Joint>& joints, int n, int s) {
+                                           const std::vector<Joint>& joints,
+                                           const LinkageOptions& options, int s) {
+  const int n = options.subdivisions;
+  const std::array<bool, 2> centred = centred_ends(seg, options);
   std::vector<Eigen::Vector3d> nodes(n + 1);
   int first_free = 0, last_free = n;
-  if (seg.joint[0] >= 0) {
-    const Eigen::Vector3d e = seg.sign[0] * joints[seg.joint[0]].edge(seg.label[0]);
+  if (centred[0]) {
+    const Eigen::Vector3d e = centred_end_edge(graph, seg, joints, options, 0);
     nodes[0] = graph.vertices[seg.vertex[0]] - 0.5 * e;
     nodes[1] = graph.vertices[seg.vertex[0]] + 0.5 * e;
     first_free = 1;
   } else {
     nodes[0] = graph.vertices[seg.vertex[0]];
   }
-  if (seg.joint[1] >= 0) {
-    const Eigen::Vector3d e = seg.sign[1] * joints[seg.joint[1]].edge(seg.label[1]);
+  if (centred[1]) {
+    const Eigen::Vector3d e = centred_end_edge(graph, seg, joints, options, 1);
     nodes[n - 1] = graph.vertices[seg.vertex[1]] - 0.5 * e;
     nodes[n] = graph.vertices[seg.vertex[1]] + 0.5 * e;
     last_free = n - 1;
@@ -110,7 +148,7 @@ std::vector<Eigen::Vector3d> segment_nodes(const LineGraph& graph, const Segment
     if ((nodes[j + 1] - nodes[j]).norm() <= 1e-12 * seg.length)
       throw ModelError("segment " + std::to_string(s) + " (vertices " +
                        std::to_string(seg.vertex[0]) + "-" + std::to_string(seg.vertex[1]) +
-                       ") is too short for its joints' terminal edges");
+                       ") is too short for its centred end edges (at joints or clamps)");
   return nodes;
 }
 
@@ -137,13 +175,14 @@ std::vector<double> normal_aligned_thetas(const ElasticRod& rod, const SegmentTo
 }
 
 // Segment s as a rod: nodes, twist-free frames, thetas putting d2 on the
-// joint normals, rest state, and half the stretching of a terminal edge at a
-// joint (the segment on the other side owns the other half).
+// joint normals, rest state, and half the stretching and mass of an end edge
+// centred on its vertex (at a joint the segment on the other side owns the
+// other half; at a clamp it lies outside the rod).
 ElasticRod build_segment(const LineGraph& graph, const SegmentTopology& seg,
                          const std::vector<Joint>& joints, const Material& material,
                          const LinkageOptions& options, int s) {
   const int n = options.subdivisions;
-  const std::vector<Eigen::Vector3d> nodes = segment_nodes(graph, seg, joints, n, s);
+  const std::vector<Eigen::Vector3d> nodes = segment_nodes(graph, seg, joints, options, s);
   const Eigen::Vector3d start_d1 =
       seg.joint[0] >= 0 ? Eigen::Vector3d(joints[seg.joint[0]].normal().cross(nodes[1] - nodes[0]))
                         : Eigen::Vector3d::Zero();
@@ -152,8 +191,9 @@ ElasticRod build_segment(const LineGraph& graph, const SegmentTopology& seg,
   rod.update_source_frames();
   rod.set_rest_state_from_current();
   if (options.rest_shape == RestShape::Straight) rod.set_rest_straight();
-  if (seg.joint[0] >= 0) rod.set_stretching_share(0, 0.5);
-  if (seg.joint[1] >= 0) rod.set_stretching_share(n - 1, 0.5);
+  const std::array<bool, 2> centred = centred_ends(seg, options);
+  if (centred[0]) rod.set_stretching_share(0, 0.5);
+  if (centred[1]) rod.set_stretching_share(n - 1, 0.5);
   return rod;
 }
 }  // namespace
@@ -161,11 +201,14 @@ ElasticRod build_segment(const LineGraph& graph, const SegmentTopology& seg,
 RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
     : graph_(graph), options_(options), topology_(build_topology(graph)) {
   const int ns = static_cast<int>(topology_.segments.size());
-  check_options(options, ns);
-  joints_ = build_joints(graph, topology_, options);
+  std::vector<int>& clamps = options_.clamped_ends;
+  std::sort(clamps.begin(), clamps.end());
+  clamps.erase(std::unique(clamps.begin(), clamps.end()), clamps.end());
+  check_options(options_, topology_);
+  joints_ = build_joints(graph, topology_, options_);
   for (int s = 0; s < ns; ++s)
     rods_.push_back(
-        build_segment(graph, topology_.segments[s], joints_, segment_material(s), options, s));
+        build_segment(graph, topology_.segments[s], joints_, segment_material(s), options_, s));
   number_unknowns();
   // The joints reproduce the terminal edges and thetas just built.
   set_dofs(dofs());
@@ -314,6 +357,7 @@ RodLinkage::FreeEnd RodLinkage::free_end(int vertex) const {
         FreeEnd f;
         f.segment = s;
         f.at_start = side == 0;
+        f.clamped = clamped(options_, vertex);
         f.end_node = f.at_start ? 0 : n;
         f.next_node = f.at_start ? 1 : n - 1;
         f.edge = f.at_start ? 0 : n - 1;
@@ -326,7 +370,9 @@ Eigen::Vector3d RodLinkage::vertex_position(int vertex) const {
   const int j = topology_.joint_of_vertex[vertex];
   if (j >= 0) return joints_[j].position();
   const FreeEnd f = free_end(vertex);
-  return rods_[f.segment].nodes()[f.end_node];
+  const std::vector<Eigen::Vector3d>& nodes = rods_[f.segment].nodes();
+  if (f.clamped) return 0.5 * (nodes[f.end_node] + nodes[f.next_node]);
+  return nodes[f.end_node];
 }
 
 void RodLinkage::update_source_frames() {

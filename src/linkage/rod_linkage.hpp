@@ -7,11 +7,15 @@
 // between two joints reaches half an edge past each of them and its n_s
 // edges are as long as the joints' terminal edges allow (l_X is the smallest
 // L / (n_s - k/2) over the segments of rod X at the joint, k the segment's
-// number of joint ends); a free end's node sits on its graph vertex. The two
+// number of joint ends and clamped free ends); a free end's node sits on its
+// graph vertex, except at a clamped free end (LinkageOptions::clamped_ends),
+// whose end edge is centred on the vertex like a terminal edge on a joint
+// (docs/model.md sections 3.2, 8.2), so that the clamp acts at the vertex. The two
 // segments of a rod that meet at a joint both own the shared terminal edge,
 // so each gets half its stretching stiffness and half its mass (the
 // reference implementation does the same): a straight rod cut into segments
-// has the energy of the uncut rod. Minimum n_s: 3 (a segment between two
+// has the energy of the uncut rod. A clamped end edge also counts half (the
+// half outside the rod has no mass). Minimum n_s: 3 (a segment between two
 // joints needs one edge that no joint controls).
 //
 // Rest shape:
@@ -60,6 +64,12 @@ struct LinkageOptions {
   // (mixed sections); empty: `material` for every segment. Stiffness,
   // masses, stresses and utilisation of a segment all follow its entry.
   std::vector<Material> segment_materials;
+  // Free rod ends (valence-1 vertices) that a support clamps, sorted
+  // (docs/model.md section 8.2): each one's end edge is centred on its vertex,
+  // its nodes half an edge before and after it along the segment, and carries
+  // half the edge's stretching stiffness and mass. A LinkageProblem's supports
+  // must clamp exactly these ends (clamped_free_ends, statics_problem.hpp).
+  std::vector<int> clamped_ends;
 };
 
 constexpr int kMinSubdivisions = 3;
@@ -145,13 +155,16 @@ class RodLinkage {
   // Velocity of segment s's full variables for a velocity of the reduced
   // unknowns: J v.
   Eigen::VectorXd full_velocity(int s, const Eigen::VectorXd& reduced_velocity) const;
-  // Where each vertex sits: a joint's position, a free end's end node.
+  // Where each vertex sits: a joint's position, a free end's end node, a
+  // clamped free end's end edge midpoint.
   Eigen::Vector3d vertex_position(int vertex) const;
   // A free-end vertex's place in its segment: the end node, the node after
-  // it (inside the segment) and the edge between them.
+  // it (inside the segment) and the edge between them. At a clamped end the
+  // vertex is the edge's midpoint (the end node lies half an edge outside).
   struct FreeEnd {
     int segment = -1;
     bool at_start = true;  // the end is the segment's first node
+    bool clamped = false;  // one of LinkageOptions::clamped_ends
     int end_node = 0;
     int next_node = 0;
     int edge = 0;

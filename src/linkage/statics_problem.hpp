@@ -8,8 +8,11 @@
 // directions (Joint::align_reference_frame, c_X = (l_X, 0, 0)) and the deviations c_A[1..2],
 // c_B[1..2] are fixed, so both directions (hence also the normal and the opening angle) are held
 // and only the two lengths stay free; "opening_angle" is refused (no such unknown). At a free rod
-// end: "position" fixes the end node (or components), "orientation" clamps the end: it also fixes
-// the next node and the end edge's theta (direction, length and twist of the end edge). Without any
+// end: "position" fixes the end node (or components), "orientation" clamps the end: it fixes the
+// end edge's two nodes and its theta (direction, length and twist of the end edge). A clamped end
+// edge is centred on its vertex (the linkage is built so: LinkageOptions::clamped_ends, which must
+// list exactly the free ends that the supports clamp, clamped_free_ends below), so the clamp acts
+// at the vertex (docs/model.md section 8.2). Without any
 // support, the joint nearest the bounding-box centre (ties: lowest index) has its position and
 // orientation fixed, which removes exactly the rigid motions (for an edge-vector joint, also that
 // joint's opening).
@@ -17,8 +20,9 @@
 // Loads: gravity g acts on lumped node masses (density x area x the node's
 // share of rest length, terminal edges at joints counted half by each of
 // their two segments), point forces on a vertex (a joint's p or a free end's
-// node). Potential of the loads: -sum f . (x - x_input); the total energy
-// includes it.
+// node; at a clamped free end half on each node of the clamped edge, so that
+// it acts at the vertex). Potential of the loads: -sum f . (x - x_input); the
+// total energy includes it.
 //
 // Convergence measure: with L the diagonal of the input's bounding box,
 // EI_max the largest bending stiffness of any segment and F_c = EI_max / L^2, the gradient's
@@ -42,8 +46,8 @@ enum class SupportDof { Position, X, Y, Z, Orientation, OpeningAngle };
 
 // A prescribed support displacement (settlement, a pushed boundary) moves
 // the held position components of the vertex to input + displacement: a
-// joint's p, or a free end's node (and, where "orientation" clamps that end,
-// the next node by the same amount, so the clamped edge translates). Only
+// joint's p, or a free end's node (where "orientation" clamps that end, both
+// nodes of the clamped edge by the same amount: the clamped edge translates). Only
 // components held by Position / X / Y / Z may be displaced (ModelError
 // otherwise). The constructor sets the fixed unknowns to the displaced
 // values, so every solve starts from them; reactions are then those at the
@@ -65,6 +69,13 @@ struct StaticsSetup {
   std::vector<PointLoad> forces;
 };
 
+// The free rod ends (valence-1 vertices of graph) that `supports` clamp (fix
+// "orientation"), sorted: the LinkageOptions::clamped_ends of a linkage to be
+// held by these supports. Vertices out of range are left out (the problem
+// refuses them).
+std::vector<int> clamped_free_ends(const LineGraph& graph,
+                                   const std::vector<VertexSupport>& supports);
+
 struct EnergyReport {
   double stretching = 0, bending = 0, twisting = 0, external = 0;
   double total() const { return stretching + bending + twisting + external; }
@@ -72,7 +83,9 @@ struct EnergyReport {
 
 class LinkageProblem {
  public:
-  // Throws ModelError for a support or load that does not apply.
+  // Throws ModelError for a support or load that does not apply, and when the
+  // supports clamp other free ends than the linkage was built to clamp
+  // (LinkageOptions::clamped_ends).
   LinkageProblem(RodLinkage linkage, const StaticsSetup& setup);
 
   const RodLinkage& linkage() const { return linkage_; }
@@ -130,8 +143,8 @@ class LinkageProblem {
   double length_scale() const { return length_scale_; }
   double force_scale() const { return force_scale_; }
 
-  // Per graph vertex: position (joint p or free end node), and opening
-  // angle (nullopt for free ends).
+  // Per graph vertex: position (joint p, free end node, clamped end edge
+  // midpoint), and opening angle (nullopt for free ends).
   std::vector<Eigen::Vector3d> vertex_positions() const;
   std::vector<std::optional<double>> opening_angles() const;
 

@@ -61,11 +61,9 @@ int central_joint_vertex(const RodLinkage& l, const Eigen::Vector3d& centre, dou
   return best;
 }
 
-// The position components a support holds, and whether it clamps the
-// orientation.
+// The position components a support holds.
 struct HeldComponents {
   bool held[3] = {false, false, false};
-  bool clamped = false;
 };
 HeldComponents held_components(const VertexSupport& support) {
   HeldComponents h;
@@ -74,14 +72,14 @@ HeldComponents held_components(const VertexSupport& support) {
     if (dof == SupportDof::X) h.held[0] = true;
     if (dof == SupportDof::Y) h.held[1] = true;
     if (dof == SupportDof::Z) h.held[2] = true;
-    if (dof == SupportDof::Orientation) h.clamped = true;
   }
   return h;
 }
 
 // Checks a support's vertex and displacement, and moves the position
 // components it holds in `displaced` (reduced unknowns) to input +
-// displacement (the input: the graph's vertex, or a free end's input nodes).
+// displacement (the input: the graph's vertex, or a free end's input nodes,
+// both nodes of the end edge at a clamped end).
 void displace_support(const RodLinkage& l, const VertexSupport& support,
                       Eigen::VectorXd& displaced) {
   check_vertex(support.vertex, static_cast<int>(l.graph().vertices.size()), "a support");
@@ -108,7 +106,7 @@ void displace_support(const RodLinkage& l, const VertexSupport& support,
   const int s = f.segment, end = f.end_node, next = f.next_node;
   const Eigen::VectorXd& input = l.input_segment_dofs()[s];
   for (int node : {end, next}) {
-    if (node == next && !h.clamped) continue;
+    if (node == next && !f.clamped) continue;
     for (int c = 0; c < 3; ++c) {
       const int r = l.reduced_index(s, 3 * node + c);
       if (h.held[c] && r >= 0) displaced[r] = input[3 * node + c] + support.displacement[c];
@@ -116,7 +114,39 @@ void displace_support(const RodLinkage& l, const VertexSupport& support,
   }
 }
 
+// Refuses supports that clamp other free ends than the linkage was built to
+// clamp: a clamped end edge is centred on its vertex (docs/model.md section 8.2).
+void check_clamps(const RodLinkage& l, const std::vector<VertexSupport>& supports) {
+  const std::vector<int> wanted = clamped_free_ends(l.graph(), supports);
+  const std::vector<int>& built = l.options().clamped_ends;
+  for (int v : wanted)
+    if (!std::binary_search(built.begin(), built.end(), v))
+      throw ModelError("support at " + vertex_name(v) +
+                       ": it clamps a free rod end that the linkage was built without a clamp "
+                       "(build it with LinkageOptions::clamped_ends = clamped_free_ends(...))");
+  for (int v : built)
+    if (!std::binary_search(wanted.begin(), wanted.end(), v))
+      throw ModelError("the linkage was built with a clamp at " + vertex_name(v) +
+                       ", but no support fixes its \"orientation\"");
+}
+
 }  // namespace
+
+std::vector<int> clamped_free_ends(const LineGraph& graph,
+                                   const std::vector<VertexSupport>& supports) {
+  const std::vector<int> valence = valences(graph);
+  std::vector<int> out;
+  for (const VertexSupport& support : supports) {
+    const int v = support.vertex;
+    if (v < 0 || v >= static_cast<int>(valence.size()) || valence[v] != 1) continue;
+    if (std::find(support.fix.begin(), support.fix.end(), SupportDof::Orientation) !=
+        support.fix.end())
+      out.push_back(v);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
 
 LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup)
     : linkage_(std::move(linkage)) {
@@ -132,6 +162,7 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup)
   }
   Eigen::VectorXd displaced = linkage_.dofs();
   for (const VertexSupport& support : supports_) displace_support(linkage_, support, displaced);
+  check_clamps(linkage_, supports_);
   linkage_.set_dofs(displaced);
   for (const VertexSupport& support : supports_) fix_support(support);
   free_position_.assign(linkage_.num_dofs(), -1);
@@ -245,7 +276,13 @@ void LinkageProblem::set_loads(const StaticsSetup& setup) {
       point_forces_.segment<3>(l.joint_dof_offset(j) + kPosition) += load.force;
     } else {
       const RodLinkage::FreeEnd f = l.free_end(load.vertex);
-      segment_forces_[f.segment].segment<3>(3 * f.end_node) += load.force;
+      Eigen::VectorXd& on_segment = segment_forces_[f.segment];
+      if (f.clamped) {  // at the vertex, the clamped edge's midpoint
+        on_segment.segment<3>(3 * f.end_node) += 0.5 * load.force;
+        on_segment.segment<3>(3 * f.next_node) += 0.5 * load.force;
+      } else {
+        on_segment.segment<3>(3 * f.end_node) += load.force;
+      }
     }
   }
   for (const Eigen::VectorXd& f : segment_forces_) has_segment_loads_.push_back(!f.isZero(0.0));

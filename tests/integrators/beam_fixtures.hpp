@@ -11,7 +11,8 @@
 namespace xshell::test {
 
 // A straight rod of length 1 along x as a one-segment linkage, square
-// section of side w with E I = 1 (E = 12 / w^4), under `setup`.
+// section of side w with E I = 1 (E = 12 / w^4), under `setup` (built with
+// the free ends that setup clamps).
 inline LinkageProblem unit_beam(int subdivisions, const StaticsSetup& setup, double w = 0.01) {
   LineGraph g;
   g.vertices = {{0, 0, 0}, {1, 0, 0}};
@@ -21,11 +22,12 @@ inline LinkageProblem unit_beam(int subdivisions, const StaticsSetup& setup, dou
   o.rest_shape = RestShape::Straight;
   o.material.young_modulus = 12.0 / std::pow(w, 4);
   o.material.section = {SectionShape::Rectangle, w, w};
+  o.clamped_ends = clamped_free_ends(g, setup.supports);
   return LinkageProblem(RodLinkage(g, o), setup);
 }
 
-// The unit beam clamped at vertex 0 (its first edge held), loaded at the
-// tip (vertex 1).
+// The unit beam clamped at vertex 0 (its first edge, centred on the vertex,
+// held), loaded at the tip (vertex 1).
 inline LinkageProblem cantilever_beam(int subdivisions, const Eigen::Vector3d& tip_force,
                                       double w = 0.01) {
   StaticsSetup setup;

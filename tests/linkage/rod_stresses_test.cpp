@@ -24,6 +24,7 @@ LinkageProblem rectangular_cantilever(int n, double w, double h, double young, i
   o.material.young_modulus = young;
   o.material.section = {SectionShape::Rectangle, w, h};
   o.material.strength = strength;
+  o.clamped_ends = {0};
   RodLinkage linkage(g, o);
   const Frame<double> frame = linkage.segment(0).material_frame(0);
   const Eigen::Vector3d d = director == 1 ? frame.d1.values() : frame.d2.values();
@@ -39,6 +40,9 @@ TEST_CASE("Cantilever: bending moments and the largest bending stress follow bea
   const int n = 40;
   const double w = 0.012, h = 0.005, young = 7.0e9, strength = 2.0e6;
   const double l = 1.0 / n;
+  // The clamped edge is centred on the root vertex: the n edges of length
+  // l_e fill L + l_e / 2, node i >= 1 at s = (i - 1/2) l_e.
+  const double l_e = 1.0 / (n - 0.5);
   int checked = 0;
   for (int director : {1, 2}) {
     CAPTURE(director);
@@ -55,10 +59,10 @@ TEST_CASE("Cantilever: bending moments and the largest bending stress follow bea
     // Root moment from the reaction: exactly P L.
     const SupportReaction r = support_reactions(problem)[0];
     CHECK(r.moment->norm() == doctest::Approx(load * 1.0).epsilon(1e-6).scale(0.0));
-    // Along the span M(s) = P (L - s) at the edge midpoints s = (k + 1/2) l,
-    // and at the first free vertex (s = l) for the clamped edge.
+    // Along the span M(s) = P (L - s) at the edge midpoints s = k l_e, and
+    // at the first bending vertex (s = l_e / 2) for the clamped edge.
     for (int k = 0; k < n - 1; ++k) {
-      const double s_k = k == 0 ? l : (k + 0.5) * l;
+      const double s_k = k == 0 ? 0.5 * l_e : k * l_e;
       const double m = director == 1 ? edges[k].forces.moment1 : edges[k].forces.moment2;
       const double other = director == 1 ? edges[k].forces.moment2 : edges[k].forces.moment1;
       CHECK(std::abs(m) == doctest::Approx(load * (1.0 - s_k)).epsilon(1e-3).scale(0.0));
@@ -66,14 +70,14 @@ TEST_CASE("Cantilever: bending moments and the largest bending stress follow bea
       CHECK(std::abs(edges[k].forces.torque) <= 1e-6 * load);
       ++checked;
     }
-    // The largest bending stress, at the root: M c / I with M = P (L - l),
-    // the beam's root value P L c / I to within the held edge.
-    const double sigma = load * (1.0 - l) * c / inertia;
+    // The largest bending stress, at the root: M c / I with M = P (L - l_e / 2),
+    // the beam's root value P L c / I to within half the held edge.
+    const double sigma = load * (1.0 - 0.5 * l_e) * c / inertia;
     CHECK(s.max_normal_stress.value == doctest::Approx(sigma).epsilon(1e-3).scale(0.0));
     CHECK(s.max_normal_stress.segment == 0);
     CHECK(s.max_normal_stress.edge == 0);
     CHECK(s.max_normal_stress.value ==
-          doctest::Approx(load * c / inertia).epsilon(1.5 * l).scale(0.0));
+          doctest::Approx(load * c / inertia).epsilon(0.6 * l).scale(0.0));
     // Utilisation: the equivalent stress over the strength, largest at the root.
     REQUIRE(s.max_utilisation.has_value());
     CHECK(s.max_utilisation->value == doctest::Approx(edges[0].equivalent / strength).scale(0.0));
@@ -113,9 +117,10 @@ TEST_CASE("Two rods with different sections: stresses follow each rod's own sect
   // Two parallel cantilevers of length 1 (vertices 0-1 and 2-3), clamped at
   // 0 and 2, each with its own modulus, section and strength, each loaded at
   // its tip towards its own d1 by P = 1e-3 E I (the small-load limit). At
-  // the root edge M = P (L - l) and sigma = M c / I with the rod's own c and I.
+  // the root edge (centred on the clamped vertex) M = P (L - l_e / 2), l_e
+  // the edge length, and sigma = M c / I with the rod's own c and I.
   const int n = 40;
-  const double l = 1.0 / n;
+  const double l_e = 1.0 / (n - 0.5);
   struct Beam {
     double young, w, h, strength;
   };
@@ -134,6 +139,7 @@ TEST_CASE("Two rods with different sections: stresses follow each rod's own sect
     o.segment_materials.push_back(m);
   }
   o.material = o.segment_materials[0];  // unused: every segment has its own
+  o.clamped_ends = {0, 2};
   RodLinkage linkage(g, o);
   StaticsSetup setup;
   setup.supports = {{0, {SupportDof::Orientation}}, {2, {SupportDof::Orientation}}};
@@ -141,7 +147,7 @@ TEST_CASE("Two rods with different sections: stresses follow each rod's own sect
   for (int s = 0; s < 2; ++s) {
     const double inertia = beams[s].w * beams[s].w * beams[s].w * beams[s].h / 12.0;  // I_d2
     load[s] = 1e-3 * beams[s].young * inertia;
-    sigma[s] = load[s] * (1.0 - l) * (0.5 * beams[s].w) / inertia;
+    sigma[s] = load[s] * (1.0 - 0.5 * l_e) * (0.5 * beams[s].w) / inertia;
     setup.forces.push_back({2 * s + 1, load[s] * linkage.segment(s).material_frame(0).d1.values()});
   }
   LinkageProblem problem(std::move(linkage), setup);
@@ -154,7 +160,7 @@ TEST_CASE("Two rods with different sections: stresses follow each rod's own sect
     const EdgeStress& root = stresses.segments[s][0];
     // (scale 0: relative tolerances, the loads are small numbers.)
     CHECK(std::abs(root.forces.moment1) ==
-          doctest::Approx(load[s] * (1.0 - l)).epsilon(1e-3).scale(0.0));
+          doctest::Approx(load[s] * (1.0 - 0.5 * l_e)).epsilon(1e-3).scale(0.0));
     CHECK(root.stresses.max_normal == doctest::Approx(sigma[s]).epsilon(1e-3).scale(0.0));
     CHECK(root.utilisation.has_value());
     if (root.utilisation)

@@ -81,7 +81,10 @@ TEST_CASE("Without supports the joint nearest the centre is pinned, supports are
                        doctest::Contains("free rod end has no opening angle"), ModelError);
   StaticsSetup clamp;
   clamp.supports = {{1, {SupportDof::Orientation}}, {2, {SupportDof::X}}};
-  const LinkageProblem clamped(RodLinkage(single_x(), test_options()), clamp);
+  LinkageOptions clamp_options = test_options();
+  clamp_options.clamped_ends = clamped_free_ends(single_x(), clamp.supports);
+  CHECK(clamp_options.clamped_ends == std::vector<int>{1});
+  const LinkageProblem clamped(RodLinkage(single_x(), clamp_options), clamp);
   CHECK(clamped.default_support_vertex() == -1);
   CHECK(clamped.num_free() == clamped.linkage().num_dofs() - 7 - 1);
 }

@@ -4,7 +4,6 @@
 
 #include "integrators/beam_fixtures.hpp"
 #include "integrators/common/linkage_objective.hpp"
-#include "integrators/elastica.hpp"
 #include "integrators/grid_fixtures.hpp"
 #include "integrators/newton/newton.hpp"
 #include "linkage/statics_problem.hpp"
@@ -31,40 +30,8 @@ NewtonOptions tight(double tolerance = 1e-9) {
 
 }  // namespace
 
-TEST_CASE(
-    "Cantilever under a tip load matches the large-deflection elastica, converging with n_s") {
-  int levels = 0;
-  for (double alpha : {0.5, 1.0, 2.0, 4.0}) {
-    CAPTURE(alpha);
-    const test::ElasticaTip exact = test::cantilever_elastica(alpha);
-    // The clamp holds the first edge, so the free length falls short of L
-    // by a fraction of an edge: the error is first order in 1/n_s, and the
-    // Richardson extrapolation 2 v(2n) - v(n) removes it.
-    std::vector<double> deflection;
-    for (int n : {10, 20, 40}) {
-      CAPTURE(n);
-      LinkageProblem problem = cantilever(n, Eigen::Vector3d(0, 0, -alpha));
-      LinkageObjective objective(problem);
-      const NewtonResult result = solve_newton(objective, tight());
-      REQUIRE(result.converged());
-      CHECK(result.stable);
-      deflection.push_back(-problem.vertex_positions()[1].z());
-    }
-    const double e10 = std::abs(deflection[0] - exact.deflection),
-                 e20 = std::abs(deflection[1] - exact.deflection),
-                 e40 = std::abs(deflection[2] - exact.deflection);
-    CHECK(e20 < e10);
-    CHECK(e40 < e20);
-    CHECK(e40 / e20 == doctest::Approx(0.5).epsilon(0.2));
-    CHECK(e40 / exact.deflection < 0.05);
-    const double extrapolated = 2.0 * deflection[2] - deflection[1];
-    CHECK(std::abs(extrapolated - exact.deflection) < 2e-3 * exact.deflection);
-    ++levels;
-  }
-  CHECK(levels == 4);
-  // The reference itself against Bisshopp & Drucker's tabulated value.
-  CHECK(test::cantilever_elastica(1.0).deflection == doctest::Approx(0.30172).epsilon(1e-4));
-}
+// The cantilever and the clamped-free column against the elastica, with their
+// convergence order: clamped_elastica_test.cpp.
 
 TEST_CASE(
     "Euler buckling of a clamped-free column: straight is stable below P_cr, unstable above") {

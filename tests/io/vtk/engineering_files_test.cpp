@@ -16,6 +16,7 @@ TEST_CASE("Engineering files: reactions, per-edge stresses, pin forces and modes
   setup.supports = {{1, {SupportDof::Orientation}}, {2, {SupportDof::Position}}};
   LinkageOptions options = test::test_options();
   options.material.strength = 10.0;
+  options.clamped_ends = clamped_free_ends(test::single_x(), setup.supports);
   const LinkageProblem problem(RodLinkage(test::single_x(), options), setup);
   EngineeringResults results;
   results.reactions = support_reactions(problem);
