@@ -90,7 +90,9 @@ TEST_CASE("render command: options out of range are invalid input (status 2)") {
   CHECK(checked == 7);
 }
 
-TEST_CASE("render command: a picture that cannot be written is status 4 and a written one 0 (needs a display)") {
+TEST_CASE(
+    "render command: a picture that cannot be written is status 4 and a written one 0 (needs a "
+    "display)") {
   Scratch dir("render-output");
   relax_sample(dir);
   // Without a display the picture cannot be made: 4 as well.
