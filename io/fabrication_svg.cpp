@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "io/xml_text.hpp"
+
 namespace xshell {
 
 namespace {
@@ -31,29 +33,6 @@ std::string length_text(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.6g", value);
   return buffer;
-}
-
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
 }
 
 // The largest 1, 2 or 5 times a power of ten not above `limit` (> 0).
@@ -119,7 +98,7 @@ std::string scale_bar_svg(const Layout& layout, double longest, double top,
     out += "<line x1=\"" + px(x) + "\" y1=\"" + px(y - 5.0) + "\" x2=\"" + px(x) + "\" y2=\"" +
            px(y + 5.0) + "\" stroke=\"#000\" stroke-width=\"1.5\"/>\n";
   out += "<text x=\"" + px(x1 + 8.0) + "\" y=\"" + px(y + 4.0) + "\" font-size=\"12\">" +
-         length_text(bar) + " (" + escape(unit) + ")</text>\n";
+         length_text(bar) + " (" + xml_escaped(unit) + ")</text>\n";
   out += "</g>\n";
   return out;
 }
@@ -150,7 +129,7 @@ std::string fabrication_svg(const FabricationData& data, const FabricationUnits&
   out += "<text x=\"" + px(kLeft) + "\" y=\"22\" font-size=\"15\" font-weight=\"bold\">" +
          std::to_string(data.rods.size()) + " laths (" + std::to_string(family_a) + " A, " +
          std::to_string(data.rods.size() - family_a) + " B), " +
-         std::to_string(data.joints.size()) + " joints; lengths in " + escape(units.length) +
+         std::to_string(data.joints.size()) + " joints; lengths in " + xml_escaped(units.length) +
          "</text>\n";
   out += "<text x=\"" + px(kLeft) +
          "\" y=\"40\" font-size=\"11\">Each lath runs from s = 0 "
