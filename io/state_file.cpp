@@ -310,7 +310,9 @@ JointState read_joint(const StateReader& r, const json& j, std::size_t index, in
 void restore_state(const std::string& text, const std::string& name, RodLinkage& linkage,
                    const Eigen::Vector3d& origin) {
   const json doc = parse_json(text, name);
-  if (!doc.is_object() || doc.value("format", "") != "xshell-state")
+  // Compared as JSON values: a "format" that is not a string is not ours.
+  const auto format = doc.is_object() ? doc.find("format") : doc.end();
+  if (format == doc.end() || *format != "xshell-state")
     throw InputError(name + ": not an xshell state file");
   try {
     const json expected = fingerprint(linkage);

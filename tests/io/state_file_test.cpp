@@ -145,6 +145,12 @@ TEST_CASE("state file: values of the wrong type are refused with their path") {
   doc["joints"][0]["vertex"] = 1;
   check_message(refusal(doc), {"s.json: joints[0].vertex: expected vertex 2"});
   check_message(refusal(json::array()), {"s.json: not an xshell state file"});
+  doc = written_state();
+  doc["format"] = {0, 0, 0};  // a "format" of another type is not ours either
+  check_message(refusal(doc), {"s.json: not an xshell state file"});
+  doc = written_state();
+  doc["joint_kind"] = {1};
+  check_message(refusal(doc), {"s.json: malformed state file"});
   RodLinkage linkage = cross_linkage();
   CHECK_THROWS_WITH_AS(restore_state("{\"format\": ", "s.json", linkage, kOrigin),
                        doctest::Contains("s.json:1:12: invalid JSON"), InputError);
