@@ -19,7 +19,9 @@
 //
 // Loads: gravity g acts on lumped node masses (density x area x the node's
 // share of rest length, terminal edges at joints counted half by each of
-// their two segments), point forces on a vertex (a joint's p or a free end's
+// their two segments); a line load w (force per unit rest length) on the
+// chosen rods is lumped the same way (w x the node's share of rest length,
+// docs/model.md section 4.8); point forces on a vertex (a joint's p or a free end's
 // node; at a clamped free end half on each node of the clamped edge, so that
 // it acts at the vertex). Potential of the loads: -sum f . (x - x_input); the
 // total energy includes it.
@@ -63,10 +65,18 @@ struct PointLoad {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
 };
 
+// A dead load per unit of rest length on some full rods (numbered as
+// LinkageTopology::rods, the rod_id of the outputs).
+struct LineLoad {
+  std::vector<int> rods;                                       // empty: every rod
+  Eigen::Vector3d force_per_length = Eigen::Vector3d::Zero();  // force / length
+};
+
 struct StaticsSetup {
   std::vector<VertexSupport> supports;  // none: the default pin described above
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
   std::vector<PointLoad> forces;
+  std::vector<LineLoad> line_loads;
 };
 
 // The free rod ends (valence-1 vertices of graph) that `supports` clamp (fix

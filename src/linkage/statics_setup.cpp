@@ -23,6 +23,15 @@ void check_vertex(int v, int nv, const char* what) {
                      std::to_string(nv) + " vertices");
 }
 
+// The total force per length of the line loads acting on full rod `rod`.
+Eigen::Vector3d line_load_on(const std::vector<LineLoad>& loads, int rod) {
+  Eigen::Vector3d w = Eigen::Vector3d::Zero();
+  for (const LineLoad& load : loads)
+    if (load.rods.empty() || std::find(load.rods.begin(), load.rods.end(), rod) != load.rods.end())
+      w += load.force_per_length;
+  return w;
+}
+
 // Axis-aligned bounding box of the input vertices.
 struct Box {
   Eigen::Vector3d lo, hi;
@@ -262,11 +271,22 @@ void LinkageProblem::fix_at_free_end(int vertex, SupportDof dof) {
 void LinkageProblem::set_loads(const StaticsSetup& setup) {
   const RodLinkage& l = linkage_;
   point_forces_ = Eigen::VectorXd::Zero(l.num_dofs());
+  const int num_rods = static_cast<int>(l.topology().rods.size());
+  for (const LineLoad& load : setup.line_loads)
+    for (int rod : load.rods)
+      if (rod < 0 || rod >= num_rods)
+        throw ModelError("a line load names rod " + std::to_string(rod) + ", but the linkage has " +
+                         std::to_string(num_rods) + " rods");
   for (int s = 0; s < l.num_segments(); ++s) {
     const ElasticRod& rod = l.segment(s);
     const Eigen::VectorXd mass = rod.lumped_mass();
     Eigen::VectorXd f = Eigen::VectorXd::Zero(rod.num_dofs());
     for (int n = 0; n < rod.num_nodes(); ++n) f.segment<3>(3 * n) = mass[3 * n] * setup.gravity;
+    const Eigen::Vector3d w = line_load_on(setup.line_loads, l.topology().segments[s].rod);
+    if (!w.isZero(0.0)) {
+      const Eigen::VectorXd length = rod.lumped_rest_lengths();
+      for (int n = 0; n < rod.num_nodes(); ++n) f.segment<3>(3 * n) += length[n] * w;
+    }
     segment_forces_.push_back(f);
   }
   for (const PointLoad& load : setup.forces) {

@@ -304,6 +304,16 @@ Eigen::VectorXd ElasticRod::lumped_mass(bool unit_density) const {
   return m;
 }
 
+Eigen::VectorXd ElasticRod::lumped_rest_lengths() const {
+  Eigen::VectorXd lengths = Eigen::VectorXd::Zero(num_nodes());
+  for (int j = 0; j < num_edges(); ++j) {
+    const double half = 0.5 * rest_length_[j] * stretching_share_[j];
+    lengths[j] += half;
+    lengths[j + 1] += half;
+  }
+  return lengths;
+}
+
 Eigen::SparseMatrix<double> ElasticRod::hessian() const {
   std::vector<Eigen::Triplet<double>> triplets;
   hessian_triplets(triplets);

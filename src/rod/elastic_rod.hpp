@@ -129,6 +129,10 @@ class ElasticRod {
   // and each theta's rotational inertia (per length x rest length x share).
   // With unit_density, the masses the rod would have at density 1.
   Eigen::VectorXd lumped_mass(bool unit_density = false) const;
+  // Per node (num_nodes()), its share of the rod's rest length: half of each
+  // adjacent edge's rest length x share, as lumped_mass splits the masses.
+  // What a dead load per unit length acts on.
+  Eigen::VectorXd lumped_rest_lengths() const;
 
   // Strains at interior vertex i (1 <= i <= n - 1).
   VertexStrains<double> strains(int i) const;
