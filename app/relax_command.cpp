@@ -193,6 +193,8 @@ RunSummary start_summary(const Run& run) {
   summary.free_unknowns = run.problem->num_free();
   summary.gradient_tolerance = run.config.solver.gradient_tolerance;
   if (run.default_support >= 0) summary.default_support = run.default_support;
+  summary.support_vertices = run.setup.support_vertices;
+  summary.transform = run.config.transform;
   summary.configuration = to_json(run.config);
   summary.version = XSHELL_VERSION;
   return summary;

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "config_parts.hpp"
 #include "input_error.hpp"
 #include "input_file.hpp"
 #include "json_field.hpp"
@@ -195,29 +196,32 @@ bool holds(const Support& s, int c) {
 
 // Two entries for one vertex that hold the same position component at
 // different displacements: which one wins would be an accident of order.
+// Entries that "select" their vertices are compared once resolved
+// (problem_setup.cpp).
 void check_conflicts(const JsonField& item, const Support& s, const std::vector<Support>& earlier,
                      const std::string& list_path) {
+  if (s.select) return;
   for (std::size_t i = 0; i < earlier.size(); ++i) {
-    if (earlier[i].vertex != s.vertex) continue;
-    for (int c = 0; c < 3; ++c)
-      if (holds(s, c) && holds(earlier[i], c) && s.displacement[c] != earlier[i].displacement[c]) {
-        std::ostringstream values;
-        values.precision(12);
-        values << earlier[i].displacement[c] << " and " << s.displacement[c];
-        item.fail("vertex " + std::to_string(s.vertex) + " is also held by " + list_path + "[" +
-                  std::to_string(i) + "], and the two displace its " + "xyz"[c] +
-                  " component differently (" + values.str() +
-                  "); give one displacement per vertex (one entry, or equal displacements)");
-      }
+    if (earlier[i].select || earlier[i].vertex != s.vertex) continue;
+    if (const int c = conflicting_component(earlier[i], s); c >= 0)
+      item.fail(
+          support_conflict(s.vertex, list_path + "[" + std::to_string(i) + "]", earlier[i], s, c));
   }
 }
 
 std::vector<Support> read_supports(const JsonField& f) {
   std::vector<Support> supports;
   for (const JsonField& item : f.elements()) {
-    item.check_keys({"vertex", "fix", "displacement"});
+    item.check_keys({"vertex", "select", "fix", "displacement"});
     Support s;
-    s.vertex = vertex_index(item.require("vertex"));
+    const auto vertex = item.find("vertex");
+    const auto select = item.find("select");
+    if (!vertex && !select) item.require("vertex");  // "missing required key"
+    if (vertex && select) item.fail("needs one of \"vertex\" and \"select\", not both");
+    if (vertex)
+      s.vertex = vertex_index(*vertex);
+    else
+      s.select = read_select(*select);
     const JsonField fix = item.require("fix");
     for (const JsonField& entry : fix.elements()) {
       const Fixed what = entry.choice(kFixed);
@@ -251,7 +255,7 @@ std::vector<Support> read_supports(const JsonField& f) {
 }
 
 Loads read_loads(const JsonField& f) {
-  f.check_keys({"gravity", "forces"});
+  f.check_keys({"gravity", "forces", "line_loads"});
   Loads loads;
   if (auto g = f.find("gravity")) loads.gravity = g->vector3();
   if (auto forces = f.find("forces"))
@@ -260,6 +264,9 @@ Loads read_loads(const JsonField& f) {
       loads.forces.push_back(
           {vertex_index(item.require("vertex")), item.require("force").vector3()});
     }
+  if (auto line_loads = f.find("line_loads"))
+    for (const JsonField& item : line_loads->elements())
+      loads.line_loads.push_back(read_line_load(item));
   return loads;
 }
 
@@ -344,10 +351,11 @@ Config parse_config(const std::string& text, const std::string& name, const std:
   if (!document.is_object())
     root.fail("the configuration must be a JSON object { ... }, got " + root.describe());
   root.check_keys({"linkage", "subdivisions", "rest_shape", "joints", "material", "rods",
-                   "supports", "loads", "solver", "output", "deployment"});
+                   "supports", "loads", "solver", "output", "deployment", "transform"});
   Config c;
   c.source = shown;
   c.linkage = file_path(root.require("linkage"), base_dir);
+  if (auto transform = root.find("transform")) c.transform = read_transform(*transform);
   if (auto n = root.find("subdivisions")) c.subdivisions = at_least(*n, 3);
   if (auto rest = root.find("rest_shape")) c.rest_shape = rest->choice(kRestShapes);
   if (auto joints = root.find("joints")) c.joints = joints->choice(kJointModels);
@@ -376,8 +384,15 @@ void check_vertices(const Config& config, const LineGraph& graph) {
                      " is out of range; the linkage has " + std::to_string(n) +
                      " vertices (0-based indices 0 to " + std::to_string(n - 1) + ")");
   };
-  for (std::size_t i = 0; i < config.supports.size(); ++i)
-    check(config.supports[i].vertex, "supports[" + std::to_string(i) + "].vertex");
+  for (std::size_t i = 0; i < config.supports.size(); ++i) {
+    const std::string key = "supports[" + std::to_string(i) + "]";
+    const Support& s = config.supports[i];
+    if (!s.select)
+      check(s.vertex, key + ".vertex");
+    else if (s.select->kind == SelectKind::Vertices)
+      for (std::size_t k = 0; k < s.select->vertices.size(); ++k)
+        check(s.select->vertices[k], key + ".select[" + std::to_string(k) + "]");
+  }
   for (std::size_t i = 0; i < config.loads.forces.size(); ++i)
     check(config.loads.forces[i].vertex, "loads.forces[" + std::to_string(i) + "].vertex");
   for (std::size_t i = 0; i < config.rods.size(); ++i) {
@@ -409,6 +424,22 @@ nlohmann::json material_json(const MaterialConfig& m) {
 }
 }  // namespace
 
+int conflicting_component(const Support& a, const Support& b) {
+  for (int c = 0; c < 3; ++c)
+    if (holds(a, c) && holds(b, c) && a.displacement[c] != b.displacement[c]) return c;
+  return -1;
+}
+
+std::string support_conflict(int vertex, const std::string& earlier_key, const Support& earlier,
+                             const Support& later, int c) {
+  std::ostringstream values;
+  values.precision(12);
+  values << earlier.displacement[c] << " and " << later.displacement[c];
+  return "vertex " + std::to_string(vertex) + " is also held by " + earlier_key +
+         ", and the two displace its " + "xyz"[c] + " component differently (" + values.str() +
+         "); give one displacement per vertex (one entry, or equal displacements)";
+}
+
 nlohmann::json to_json(const Config& c) {
   const nlohmann::json material = material_json(c.material);
   nlohmann::json rods = nlohmann::json::array();
@@ -424,12 +455,18 @@ nlohmann::json to_json(const Config& c) {
   for (const Support& s : c.supports) {
     nlohmann::json fix = nlohmann::json::array();
     for (Fixed f : s.fix) fix.push_back(name_of(f, kFixed));
-    supports.push_back(
-        {{"vertex", s.vertex}, {"fix", fix}, {"displacement", vector_json(s.displacement)}});
+    nlohmann::json item = {{"fix", fix}, {"displacement", vector_json(s.displacement)}};
+    if (s.select)
+      item["select"] = select_json(*s.select);
+    else
+      item["vertex"] = s.vertex;
+    supports.push_back(item);
   }
   nlohmann::json forces = nlohmann::json::array();
   for (const PointForce& f : c.loads.forces)
     forces.push_back({{"vertex", f.vertex}, {"force", vector_json(f.force)}});
+  nlohmann::json line_loads = nlohmann::json::array();
+  for (const LineLoadConfig& l : c.loads.line_loads) line_loads.push_back(line_load_json(l));
 
   const SolverOptions& s = c.solver;
   nlohmann::json j = {
@@ -440,7 +477,8 @@ nlohmann::json to_json(const Config& c) {
       {"material", material},
       {"rods", rods},
       {"supports", supports},
-      {"loads", {{"gravity", vector_json(c.loads.gravity)}, {"forces", forces}}},
+      {"loads",
+       {{"gravity", vector_json(c.loads.gravity)}, {"forces", forces}, {"line_loads", line_loads}}},
       {"solver",
        {{"method", name_of(s.method, kMethods)},
         {"gradient_tolerance", s.gradient_tolerance},
@@ -457,6 +495,7 @@ nlohmann::json to_json(const Config& c) {
         {"format", name_of(c.output.format, kFormats)},
         {"solids", toggle_json(c.output.solids)},
         {"progress", toggle_json(c.output.progress)}}}};
+  if (!c.transform.is_identity()) j["transform"] = transform_json(c.transform);
   if (const auto& d = c.deployment) {
     nlohmann::json deployment = {{"steps", d->steps}};
     if (d->target == DeploymentTarget::AverageOpeningAngle) {

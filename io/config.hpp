@@ -17,12 +17,14 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "linkage/graph.hpp"
+#include "linkage/graph_transform.hpp"
 #include "linkage/rod_linkage.hpp"
 
 namespace xshell {
@@ -98,18 +100,45 @@ struct MaterialConfig {
   CrossSectionConfig cross_section;  // "cross_section", required
 };
 
+// "supports[].select": the vertices a support holds, instead of one "vertex".
+// One of:
+//   "boundary": the outer rim of the linkage and its free rod ends
+//     (boundary_vertices, linkage/graph_boundary.hpp);
+//   {"valence": [1, 2]}: every vertex of these valences (1 to 4);
+//   {"region": {"z_max": 10.0}}: every vertex in a box of the transformed input
+//     (keys x_min, x_max, y_min, y_max, z_min, z_max, at least one; bounds
+//     included; length);
+//   [v, ...]: these vertices (0-based, no repeats).
+// Resolved against the linkage by resolve_supports (support_selection.hpp);
+// selecting nothing is an error naming the entry.
+enum class SelectKind { Boundary, Valence, Region, Vertices };
+struct SupportSelect {
+  SelectKind kind = SelectKind::Vertices;
+  std::vector<int> valences;                                          // Valence
+  Eigen::Vector3d region_min = Eigen::Vector3d::Constant(-HUGE_VAL);  // Region: absent bounds
+  Eigen::Vector3d region_max = Eigen::Vector3d::Constant(HUGE_VAL);   // are infinite
+  std::vector<int> vertices;                                          // Vertices
+};
+
 // An element of "supports" (default: none). A vertex may appear in several
 // elements, but not two that hold the same position component at different
 // displacements.
 struct Support {
-  int vertex = 0;          // "vertex", >= 0, required; 0-based index into the linkage file
+  int vertex = 0;          // "vertex", >= 0; 0-based index into the linkage file. Exactly one of
+                           // "vertex" and "select" is required
   std::vector<Fixed> fix;  // "fix", required: non-empty, no duplicates
   Eigen::Vector3d displacement =
       Eigen::Vector3d::Zero();  // "displacement", [dx, dy, dz],
                                 // default [0, 0, 0]; length: the held position moves to input +
                                 // displacement. A non-zero component must be held by "position" or
                                 // by its roller "x", "y", "z" (rejected otherwise)
+  std::optional<SupportSelect> select =
+      std::nullopt;  // "select" (then "vertex" is absent and unused)
 };
+
+// Where supports a and b hold a common vertex: the first position component
+// both hold at different displacements (0, 1, 2), or -1 when none.
+int conflicting_component(const Support& a, const Support& b);
 
 // An element of "rods" (default: none): a material and section for some full
 // rods, overriding the top-level "material". Exactly one selector:
@@ -137,11 +166,21 @@ struct PointForce {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  // "force", [fx, fy, fz], required; force
 };
 
+// An element of "loads.line_loads": a dead load per unit of rest length.
+struct LineLoadConfig {
+  std::vector<int> rods;  // "rods", required: "all" (stored empty) or [k, ...], rod indices
+                          // >= 0 (the rod_id of the outputs), no repeats
+  Eigen::Vector3d force_per_length = Eigen::Vector3d::Zero();  // "force_per_length",
+                                                               // [fx, fy, fz], required;
+                                                               // force / length
+};
+
 // "loads".
 struct Loads {
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // "gravity", [gx, gy, gz], default
                                                       // [0, 0, 0]; length / time^2
   std::vector<PointForce> forces;                     // "forces", default none
+  std::vector<LineLoadConfig> line_loads;             // "line_loads", default none
 };
 
 // "solver".
@@ -193,10 +232,15 @@ struct Deployment {
 };
 
 struct Config {
-  std::string source;    // the configuration's file name (for messages; not a key)
-  std::string linkage;   // "linkage", required: the OBJ line mesh, relative to the
-                         // configuration file's folder, stored resolved
-  int subdivisions = 8;  // "subdivisions", >= 3, default 8: rod edges per graph edge
+  std::string source;        // the configuration's file name (for messages; not a key)
+  std::string linkage;       // "linkage", required: the OBJ line mesh, relative to the
+                             // configuration file's folder, stored resolved
+  GraphTransform transform;  // "transform", default none: {"mirror": "x" | "y" | "z",
+                             // "scale": > 0, "rotate_deg": [rx, ry, rz], "translate": [tx, ty,
+                             // tz]}, each optional, applied to the linkage before anything else
+                             // in that order (linkage/graph_transform.hpp); scale also converts
+                             // the linkage's length unit
+  int subdivisions = 8;      // "subdivisions", >= 3, default 8: rod edges per graph edge
   RestShape rest_shape = RestShape::Input;   // "rest_shape", default "input"
   JointModel joints = JointModel::Rotation;  // "joints", default "rotation"
   MaterialConfig material;                   // "material", required

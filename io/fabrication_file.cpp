@@ -29,6 +29,8 @@ FabricationUnits fabrication_units(const Config& config) {
   FabricationUnits units;
   if (!config.linkage.empty())
     units.length = "length unit of " + std::filesystem::path(config.linkage).filename().string();
+  if (config.transform.scale != 1.0)
+    units.length += " x " + number(config.transform.scale) + " (the \"transform\" scale)";
   return units;
 }
 

@@ -1,6 +1,7 @@
 #include "problem_setup.hpp"
 
 #include "input_error.hpp"
+#include "support_selection.hpp"
 
 namespace xshell {
 
@@ -26,7 +27,8 @@ SupportDof to_support(Fixed f) {
 // would refuse them too, but in words about the linkage, not the
 // configuration): an opening angle fixed at a free rod end, or at an
 // edge-vector joint (which has no opening-angle unknown).
-void check_support_kinds(const Config& config, const LineGraph& graph) {
+void check_support_kinds(const Config& config, const LineGraph& graph,
+                         const std::vector<std::vector<int>>& vertices) {
   const std::vector<int> valence = valences(graph);
   for (std::size_t i = 0; i < config.supports.size(); ++i) {
     const Support& s = config.supports[i];
@@ -34,15 +36,32 @@ void check_support_kinds(const Config& config, const LineGraph& graph) {
       if (s.fix[k] != Fixed::OpeningAngle) continue;
       const std::string key = config.source + ": supports[" + std::to_string(i) + "].fix[" +
                               std::to_string(k) + "]: \"opening_angle\": ";
-      if (valence[s.vertex] == 1)
-        throw InputError(key + "vertex " + std::to_string(s.vertex) +
-                         " is a free rod end, which has no opening angle to fix");
+      for (int v : vertices[i])
+        if (valence[v] == 1)
+          throw InputError(key + "vertex " + std::to_string(v) +
+                           " is a free rod end, which has no opening angle to fix");
       if (config.joints == JointModel::EdgeVectors)
         throw InputError(key +
                          "edge-vector joints (\"joints\": \"edge_vectors\") have no "
                          "opening-angle unknown; fix \"orientation\" (both rod directions, "
                          "hence the angle too) or use \"joints\": \"rotation\"");
     }
+  }
+}
+// Rod indices of "loads.line_loads" beyond the linkage's rods.
+void check_line_loads(const Config& config, const LineGraph& graph) {
+  int num_rods = -1;
+  for (std::size_t i = 0; i < config.loads.line_loads.size(); ++i) {
+    const std::vector<int>& rods = config.loads.line_loads[i].rods;
+    if (rods.empty()) continue;
+    if (num_rods < 0) num_rods = static_cast<int>(build_topology(graph).rods.size());
+    for (std::size_t k = 0; k < rods.size(); ++k)
+      if (rods[k] >= num_rods)
+        throw InputError(config.source + ": loads.line_loads[" + std::to_string(i) + "].rods[" +
+                         std::to_string(k) + "]: rod " + std::to_string(rods[k]) +
+                         " is out of range; the linkage has " + std::to_string(num_rods) +
+                         " rods (0-based, numbered as the rod_id cell data of the output's "
+                         "rods_*.vtp)");
   }
 }
 }  // namespace
@@ -102,9 +121,11 @@ std::vector<Material> segment_materials(const Config& config, const LineGraph& g
   return out;
 }
 
-ProblemSetup make_problem_setup(const Config& config, const LineGraph& graph) {
+ProblemSetup make_problem_setup(const Config& config, const LineGraph& input) {
+  const LineGraph graph = transformed(input, config.transform);
   check_vertices(config, graph);
-  check_support_kinds(config, graph);
+  const std::vector<std::vector<int>> support_vertices = resolve_supports(config, graph);
+  check_support_kinds(config, graph, support_vertices);
   // A linkage far beyond any machine's memory is refused here, with the key
   // to change, rather than failing in an allocation (or the kernel's OOM killer).
   const double rod_edges = static_cast<double>(graph.edges.size()) * config.subdivisions;
@@ -114,6 +135,7 @@ ProblemSetup make_problem_setup(const Config& config, const LineGraph& graph) {
                      std::to_string(static_cast<long long>(rod_edges)) + " rod edges; at most " +
                      std::to_string(kMaxRodEdges) + " are supported");
   ProblemSetup setup;
+  setup.support_vertices = support_vertices;
   Eigen::Vector3d lo = graph.vertices.at(0), hi = lo;
   for (const auto& v : graph.vertices) {
     lo = lo.cwiseMin(v);
@@ -132,10 +154,13 @@ ProblemSetup make_problem_setup(const Config& config, const LineGraph& graph) {
     setup.options.segment_materials =
         segment_materials(config, setup.graph, build_topology(setup.graph));
 
-  for (const Support& s : config.supports) {
-    VertexSupport vs{s.vertex, {}, s.displacement};
-    for (Fixed f : s.fix) vs.fix.push_back(to_support(f));
-    setup.statics.supports.push_back(vs);
+  for (std::size_t i = 0; i < config.supports.size(); ++i) {
+    const Support& s = config.supports[i];
+    for (int v : support_vertices[i]) {
+      VertexSupport vs{v, {}, s.displacement};
+      for (Fixed f : s.fix) vs.fix.push_back(to_support(f));
+      setup.statics.supports.push_back(vs);
+    }
   }
   // A clamped free end's end edge is centred on its vertex when the linkage
   // is built (docs/model.md section 8.2).
@@ -143,6 +168,9 @@ ProblemSetup make_problem_setup(const Config& config, const LineGraph& graph) {
   setup.statics.gravity = config.loads.gravity;
   for (const PointForce& f : config.loads.forces)
     setup.statics.forces.push_back({f.vertex, f.force});
+  check_line_loads(config, setup.graph);
+  for (const LineLoadConfig& l : config.loads.line_loads)
+    setup.statics.line_loads.push_back({l.rods, l.force_per_length});
   return setup;
 }
 

@@ -14,10 +14,13 @@ struct ProblemSetup {
   LineGraph graph;                                   // recentred
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // input bounding-box centre
   LinkageOptions options;
-  StaticsSetup statics;  // forces, gravity and supports
+  StaticsSetup statics;  // forces, gravity, line loads and supports (one per resolved vertex)
+  std::vector<std::vector<int>> support_vertices;  // per entry of config.supports, its vertices
 };
 
-// Throws InputError for vertex indices out of range, for a support that
+// The graph is first transformed by config.transform, then the supports'
+// selections resolved in it (resolve_supports). Throws InputError for vertex
+// and rod indices out of range, for selections that select nothing, for a support that
 // cannot apply (an opening angle held at a free rod end or at edge-vector
 // joints), for more than kMaxRodEdges rod edges and for "rods" entries that
 // do not apply (see segment_materials); ModelError when the graph is no

@@ -1,8 +1,31 @@
 #include "summary_file.hpp"
 
 #include "atomic_file.hpp"
+#include "config_parts.hpp"
 
 namespace xshell {
+
+namespace {
+
+nlohmann::json supports_json(const std::vector<std::vector<int>>& support_vertices) {
+  nlohmann::json out = nlohmann::json::array();
+  for (std::size_t i = 0; i < support_vertices.size(); ++i)
+    out.push_back({{"entry", i}, {"vertices", support_vertices[i]}});
+  return out;
+}
+
+// The transform as configured, with its matrix.
+nlohmann::json applied(const GraphTransform& t) {
+  nlohmann::json out = transform_json(t);
+  const Eigen::Matrix3d a = t.linear();
+  nlohmann::json matrix = nlohmann::json::array();
+  for (int r = 0; r < 3; ++r) matrix.push_back({a(r, 0), a(r, 1), a(r, 2), t.translate[r]});
+  matrix.push_back({0.0, 0.0, 0.0, 1.0});
+  out["matrix"] = matrix;
+  return out;
+}
+
+}  // namespace
 
 nlohmann::json to_json(const RunSummary& s) {
   using nlohmann::json;
@@ -39,6 +62,8 @@ nlohmann::json to_json(const RunSummary& s) {
               {"vertices", vertices},
               {"opening_angles", angles},
               {"default_support", s.default_support ? json(*s.default_support) : json(nullptr)},
+              {"supports", supports_json(s.support_vertices)},
+              {"transform", s.transform.is_identity() ? json(nullptr) : applied(s.transform)},
               {"history", history},
               {"configuration", s.configuration},
               {"version", s.version}};

@@ -21,6 +21,11 @@
 //                     free end's end node or a clamped free end's end edge midpoint
 //   opening_angles    per vertex, radians; null for free ends
 //   default_support   the vertex pinned when no support was given, else null
+//   supports          per entry of the configuration's "supports", in order: {entry (its
+//                     index), vertices (the vertices it holds, increasing: its "vertex" or
+//                     what its "select" selected)}
+//   transform         null, or the "transform" applied to the input: {mirror, scale,
+//                     rotate_deg, translate, matrix (4 x 4, rows: x_out = M [x_in; 1])}
 //   history           per iteration/step: {iteration, time, energy, gradient_norm, step,
 //                     kinetic_energy, seconds}; kinetic damping keeps only its resets and
 //                     every 100th iteration
@@ -42,6 +47,7 @@
 #include <string>
 #include <vector>
 
+#include "linkage/graph_transform.hpp"
 #include "linkage/statics_problem.hpp"
 
 namespace xshell {
@@ -85,6 +91,8 @@ struct RunSummary {
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::optional<double>> opening_angles;
   std::optional<int> default_support;
+  std::vector<std::vector<int>> support_vertices;  // per configuration entry
+  GraphTransform transform;
   std::vector<IterationRecord> history;
   std::optional<DeploymentSummary> deployment;  // runs with a "deployment" only
   nlohmann::json configuration;
