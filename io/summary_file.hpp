@@ -20,6 +20,11 @@
 //   vertices          per graph vertex in file order: [x, y, z] of a joint's position, a
 //                     free end's end node or a clamped free end's end edge midpoint
 //   opening_angles    per vertex, radians; null for free ends
+//   min_opening_angle, max_opening_angle   over every joint, radians (null without joints)
+//   joints_outside_opening_range   [{vertex, angle}] of the joints whose opening angle is
+//                     outside (0, pi) (rods passed through each other there), by vertex
+//   warnings          what the run warned of on stderr, one line each (supports that start far
+//                     from where they are held, joints outside (0, pi), free rigid motions, ...)
 //   default_support   the vertex pinned when no support was given, else null
 //   history           per iteration/step: {iteration, time, energy, gradient_norm, step,
 //                     kinetic_energy, seconds}; kinetic damping keeps only its resets and
@@ -42,6 +47,7 @@
 #include <string>
 #include <vector>
 
+#include "linkage/opening_angle_range.hpp"
 #include "linkage/statics_problem.hpp"
 
 namespace xshell {
@@ -84,6 +90,9 @@ struct RunSummary {
   EnergyReport energy;
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::optional<double>> opening_angles;
+  std::optional<double> min_opening_angle, max_opening_angle;
+  std::vector<JointOutsideOpeningRange> joints_outside_opening_range;
+  std::vector<std::string> warnings;
   std::optional<int> default_support;
   std::vector<IterationRecord> history;
   std::optional<DeploymentSummary> deployment;  // runs with a "deployment" only
