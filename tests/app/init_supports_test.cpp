@@ -67,8 +67,7 @@ std::string suggested_displacement(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE(
-    "relax --init: supports hold input + displacement; one the state has elsewhere is warned of") {
+TEST_CASE("relax --init: supports hold input + displacement and a moved one is warned of") {
   const Scratch dir("init-supports");
   write_opened_state(dir);
   const nlohmann::json opened = read_json(dir / "opened" / "summary.json");
