@@ -121,11 +121,13 @@ class DeploymentRecorder {
   void warn_outside_opening_range(const DeploymentStep& s) {
     if (s.outside_opening_range == 0 || warned_outside_) return;
     warned_outside_ = true;
-    std::fprintf(stderr,
-                 "xshell: warning: deployment step %d: %d joint%s outside (0, pi) (smallest "
-                 "opening angle %.6g rad): rods pass through each other there\n",
-                 s.step, s.outside_opening_range, s.outside_opening_range == 1 ? "" : "s",
-                 s.min_opening_angle);
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "deployment step %d: %d joint%s outside (0, pi) (smallest opening angle %.6g "
+                  "rad): rods pass through each other there",
+                  s.step, s.outside_opening_range, s.outside_opening_range == 1 ? "" : "s",
+                  s.min_opening_angle);
+    hooks_.warn(text);
   }
 
   fs::path dir_;

@@ -232,6 +232,10 @@ SolverRun solve(Run& run, bool progress, const std::atomic<bool>& stop, Outputs&
   hooks.stop = &halt;
   hooks.history = &summary.history;
   hooks.progress = progress;
+  hooks.warn = [&](const std::string& text) {
+    warn(run, text);
+    summary.warnings.push_back(text);
+  };
   if (run.config.deployment)
     return run_deployment(run.config, *run.problem, run.config.output.directory, hooks);
   LinkageObjective objective(*run.problem);

@@ -144,6 +144,10 @@ TEST_CASE("relax: deployment.csv gives each step's smallest and largest opening 
   CHECK(std::stod(rows[2][9]) == s["min_opening_angle"].get<double>());
   CHECK(std::stod(rows[2][10]) == s["max_opening_angle"].get<double>());
   CHECK(s["joints_outside_opening_range"] == nlohmann::json::array());
+  // The step's warning, once, in the summary too.
+  REQUIRE(s["warnings"].size() == 1);
+  CHECK(s["warnings"][0].get<std::string>().rfind("deployment step 0: 9 joints outside (0, pi)",
+                                                  0) == 0);
 }
 
 TEST_CASE("Manta ray relaxed flat: its smallest opening angle and the joints through zero" *
@@ -211,6 +215,7 @@ TEST_CASE("Manta ray relaxed flat: its smallest opening angle and the joints thr
   CHECK(closed_outside > outside.size());
   CHECK(contains(c.errors, "xshell: warning: deployment step 0: "));
   CHECK(contains(c.errors, "xshell: warning: " + std::to_string(closed_outside) + " joints"));
+  CHECK(closed["warnings"].size() == 2);  // the deployment's and the final state's
   std::istringstream table(read_text(dir / "closed" / "deployment.csv"));
   std::string line, last;
   while (std::getline(table, line))
