@@ -26,13 +26,14 @@ constexpr const char* kPlot = "deployment.png";
 constexpr const char* kCompleted = "completed";
 constexpr const char* kHeader =
     "step,average_angle,energy_total,energy_stretching,energy_bending,energy_twisting,torque,"
-    "iterations,stable\n";
+    "iterations,stable,min_opening_angle,max_opening_angle\n";
 
 std::string table_row(const DeploymentStep& s) {
-  char text[320];
-  std::snprintf(text, sizeof text, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%ld,%s\n", s.step,
-                s.average_angle, s.energy.total(), s.energy.stretching, s.energy.bending,
-                s.energy.twisting, s.torque, s.iterations, s.stable ? "true" : "false");
+  char text[400];
+  std::snprintf(text, sizeof text, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%ld,%s,%.17g,%.17g\n",
+                s.step, s.average_angle, s.energy.total(), s.energy.stretching, s.energy.bending,
+                s.energy.twisting, s.torque, s.iterations, s.stable ? "true" : "false",
+                s.min_opening_angle, s.max_opening_angle);
   return text;
 }
 
@@ -103,6 +104,7 @@ class DeploymentRecorder {
       if (output_error_.empty()) output_error_ = e.what();
     }
     hooks_.snapshot(s.step, false);
+    warn_outside_opening_range(s);
     if (hooks_.progress)
       std::fprintf(stderr,
                    "deploy step %3d  s %.4f  angle %.6f rad (%.3f deg)  energy %.6e  torque %.6e  "
@@ -114,8 +116,23 @@ class DeploymentRecorder {
     poll();
   }
 
+  // Once per deployment, at the first step that takes a joint out of (0,
+  // pi); the final state's joints are listed by the run's own warning.
+  void warn_outside_opening_range(const DeploymentStep& s) {
+    if (s.outside_opening_range == 0 || warned_outside_) return;
+    warned_outside_ = true;
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "deployment step %d: %d joint%s outside (0, pi) (smallest opening angle %.6g "
+                  "rad): rods pass through each other there",
+                  s.step, s.outside_opening_range, s.outside_opening_range == 1 ? "" : "s",
+                  s.min_opening_angle);
+    hooks_.warn(text);
+  }
+
   fs::path dir_;
   const RunHooks& hooks_;
+  bool warned_outside_ = false;
   std::atomic<bool> stop_{false};
   std::string table_ = kHeader;
   int solving_ = 0;      // the step being solved
@@ -175,9 +192,13 @@ void prepare_deployment(const Config& config, std::optional<LinkageProblem>& pro
     return;
   }
   const std::vector<int> valence = valences(problem->linkage().graph());
-  if (problem->default_support_vertex() >= 0)
+  // The default pin, given explicitly: held where it is (a given support
+  // holds input + displacement, statics_problem.hpp).
+  if (const int pin = problem->default_support_vertex(); pin >= 0)
     statics.supports.push_back(
-        {problem->default_support_vertex(), {SupportDof::Position, SupportDof::Orientation}});
+        {pin,
+         {SupportDof::Position, SupportDof::Orientation},
+         problem->vertex_positions()[pin] - problem->linkage().graph().vertices[pin]});
   for (size_t i = 0; i < d.joint_angles.size(); ++i) {
     const int v = d.joint_angles[i].vertex;
     if (valence[v] < 2)

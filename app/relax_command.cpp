@@ -23,7 +23,9 @@
 #include "io/vtk/linkage_snapshot.hpp"
 #include "io/vtk/vtk_series.hpp"
 #include "linkage/model_error.hpp"
+#include "linkage/opening_angle_range.hpp"
 #include "linkage/rigid_motions.hpp"
+#include "run_warnings.hpp"
 #include "solver_runs.hpp"
 
 namespace xshell {
@@ -43,6 +45,12 @@ SolverMethod parse_method(const std::string& name) {
 // Combinations the configuration can name but this version does not run:
 // refuse them clearly rather than ignore them.
 void check_available(const Config& config) {
+  // Before any state is read: a state of rotation joints read into
+  // edge-vector joints would otherwise be reported as the problem.
+  if (config.deployment && config.joints != JointModel::Rotation)
+    throw InputError(config.source +
+                     ": deployment: needs \"joints\": \"rotation\" (edge-vector joints have no "
+                     "opening-angle unknown to drive)");
   if (config.solver.method == SolverMethod::KineticDamping && config.deployment)
     throw InputError(config.source +
                      ": deployment: not available with solver.method \"kinetic-damping\"; use "
@@ -124,8 +132,16 @@ struct Run {
   Config config;
   std::optional<LinkageProblem> problem;
   ProblemSetup setup;
-  int default_support = -1;  // the vertex pinned by default, or -1
+  int default_support = -1;              // the vertex pinned by default, or -1
+  std::vector<FarSupport> far_supports;  // given supports that start far from where they hold
+  std::vector<std::string> warnings;     // said on stderr, kept for the summary
 };
+
+// Says a warning on stderr and keeps it for the summary.
+void warn(Run& run, const std::string& text) {
+  std::cerr << "xshell: warning: " << text << "\n";
+  run.warnings.push_back(text);
+}
 
 // Reads the configuration, the linkage and the state to start from, and
 // builds the problem. Returns 0, or the exit status after saying why not.
@@ -142,6 +158,8 @@ int load(const RelaxArguments& args, Run& run) {
     if (args.init) read_state(*args.init, linkage, run.setup.origin);
     run.problem.emplace(std::move(linkage), run.setup.statics);
     run.default_support = run.problem->default_support_vertex();
+    // Before the deployment's problem, made again from this one's state.
+    run.far_supports = far_supports(*run.problem, run.setup.statics.supports.size());
     prepare_deployment(config, run.problem, run.setup.statics);  // no-op without "deployment"
   } catch (const InputError& e) {
     std::cerr << "xshell: error: " << e.what() << "\n";
@@ -163,7 +181,7 @@ struct FreeMotions {
 // Says which vertex is pinned by default, and warns of rigid motions that
 // no support holds: they make Newton's system singular unless the loads
 // hold them (said again in the reason of a failure).
-FreeMotions check_supports(const Run& run) {
+FreeMotions check_supports(const RelaxArguments& args, Run& run) {
   if (run.default_support >= 0)
     std::cerr << "xshell: no supports given: pinning position and orientation of vertex "
               << run.default_support << " (the joint nearest the centre)\n";
@@ -180,8 +198,10 @@ FreeMotions check_supports(const Run& run) {
       std::any_of(rigid_motions.begin(), rigid_motions.end(),
                   [](const RigidMotion& m) { return m.kind == RigidMotion::Kind::Translation; });
   if (!motions.description.empty())
-    std::cerr << "xshell: warning: the supports leave rigid motions free (" << motions.description
-              << "): only the loads can hold them\n";
+    warn(run, "the supports leave rigid motions free (" + motions.description +
+                  "): only the loads can hold them");
+  for (const FarSupport& far : run.far_supports)
+    warn(run, far_support_warning(far, args.init.has_value()));
   return motions;
 }
 
@@ -197,6 +217,7 @@ RunSummary start_summary(const Run& run) {
   summary.transform = run.config.transform;
   summary.configuration = to_json(run.config);
   summary.version = XSHELL_VERSION;
+  summary.warnings = run.warnings;
   return summary;
 }
 
@@ -213,15 +234,31 @@ SolverRun solve(Run& run, bool progress, const std::atomic<bool>& stop, Outputs&
   hooks.stop = &halt;
   hooks.history = &summary.history;
   hooks.progress = progress;
+  hooks.warn = [&](const std::string& text) {
+    warn(run, text);
+    summary.warnings.push_back(text);
+  };
   if (run.config.deployment)
     return run_deployment(run.config, *run.problem, run.config.output.directory, hooks);
   LinkageObjective objective(*run.problem);
   return run_solver(run.config, objective, hooks);
 }
 
+// The range of the final state's opening angles, and a warning for the
+// joints outside (0, pi).
+void record_opening_range(Run& run, RunSummary& summary) {
+  const OpeningAngleRange range = opening_angle_range(summary.opening_angles);
+  summary.min_opening_angle = range.min;
+  summary.max_opening_angle = range.max;
+  summary.joints_outside_opening_range = range.outside;
+  if (range.outside.empty()) return;
+  warn(run, opening_range_warning(range));
+  summary.warnings.push_back(run.warnings.back());
+}
+
 // The summary's fields from what the solve found, and the final state.
-void record_result(const SolverRun& solved, bool interrupted, const FreeMotions& motions,
-                   const Run& run, RunSummary& summary) {
+void record_result(const SolverRun& solved, bool interrupted, const FreeMotions& motions, Run& run,
+                   RunSummary& summary) {
   const SolveResult& result = solved.result;
   summary.status = to_string(result.status);
   summary.reason = result.reason;
@@ -237,6 +274,10 @@ void record_result(const SolverRun& solved, bool interrupted, const FreeMotions&
   } else if (!summary.converged && !motions.description.empty()) {
     summary.reason = "singular system: the supports leave rigid motions free (" +
                      motions.description + "); " + summary.reason;
+  } else if (!summary.converged) {
+    // Supports moved far in one jump before the solve are the likeliest
+    // cause: name them before what the solver saw.
+    summary.reason = far_supports_reason(run.far_supports) + summary.reason;
   }
   if (motions.translation) summary.stable = false;
   for (char& c : summary.reason)  // one line, whatever a library said
@@ -246,6 +287,7 @@ void record_result(const SolverRun& solved, bool interrupted, const FreeMotions&
   summary.vertices = run.problem->vertex_positions();
   for (auto& v : summary.vertices) v += run.setup.origin;
   summary.opening_angles = run.problem->opening_angles();
+  record_opening_range(run, summary);
 }
 
 // Writes the engineering results (of a converged run), the state and the
@@ -260,7 +302,8 @@ int finish(Run& run, const SolverRun& solved, Outputs& outputs, RunSummary& summ
       std::cerr << "xshell: error: " << e.what() << "\n";
       return kExitOutputFailed;
     } catch (const std::exception& e) {
-      std::cerr << "xshell: warning: no engineering results: " << e.what() << "\n";
+      warn(run, std::string("no engineering results: ") + e.what());
+      summary.warnings.push_back(run.warnings.back());
     }
   }
   summary.wall_seconds =
@@ -308,7 +351,7 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
     std::cerr << "xshell: error: cannot write the output directory: " << e.what() << "\n";
     return kExitOutputFailed;
   }
-  const FreeMotions motions = check_supports(run);
+  const FreeMotions motions = check_supports(args, run);
   RunSummary summary = start_summary(run);
   const SolverRun solved = solve(run, progress_enabled(args, run.config), stop, *outputs, summary);
   const bool interrupted = solved.result.status == SolveStatus::Interrupted && stop.load();

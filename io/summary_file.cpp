@@ -32,6 +32,10 @@ nlohmann::json to_json(const RunSummary& s) {
   json vertices = json::array(), angles = json::array(), history = json::array();
   for (const auto& v : s.vertices) vertices.push_back({v.x(), v.y(), v.z()});
   for (const auto& a : s.opening_angles) angles.push_back(a ? json(*a) : json(nullptr));
+  json outside = json::array();
+  for (const auto& j : s.joints_outside_opening_range)
+    outside.push_back({{"vertex", j.vertex}, {"angle", j.angle}});
+  auto optional = [](const std::optional<double>& x) { return x ? json(*x) : json(nullptr); };
   for (const auto& h : s.history)
     history.push_back({{"iteration", h.iteration},
                        {"time", h.time},
@@ -61,6 +65,10 @@ nlohmann::json to_json(const RunSummary& s) {
                 {"external", s.energy.external}}},
               {"vertices", vertices},
               {"opening_angles", angles},
+              {"min_opening_angle", optional(s.min_opening_angle)},
+              {"max_opening_angle", optional(s.max_opening_angle)},
+              {"joints_outside_opening_range", outside},
+              {"warnings", s.warnings},
               {"default_support", s.default_support ? json(*s.default_support) : json(nullptr)},
               {"supports", supports_json(s.support_vertices)},
               {"transform", s.transform.is_identity() ? json(nullptr) : applied(s.transform)},

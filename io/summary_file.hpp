@@ -20,6 +20,11 @@
 //   vertices          per graph vertex in file order: [x, y, z] of a joint's position, a
 //                     free end's end node or a clamped free end's end edge midpoint
 //   opening_angles    per vertex, radians; null for free ends
+//   min_opening_angle, max_opening_angle   over every joint, radians (null without joints)
+//   joints_outside_opening_range   [{vertex, angle}] of the joints whose opening angle is
+//                     outside (0, pi) (rods passed through each other there), by vertex
+//   warnings          what the run warned of on stderr, one line each (supports that start far
+//                     from where they are held, joints outside (0, pi), free rigid motions, ...)
 //   default_support   the vertex pinned when no support was given, else null
 //   supports          per entry of the configuration's "supports", in order: {entry (its
 //                     index), vertices (the vertices it holds, increasing: its "vertex" or
@@ -48,6 +53,7 @@
 #include <vector>
 
 #include "linkage/graph_transform.hpp"
+#include "linkage/opening_angle_range.hpp"
 #include "linkage/statics_problem.hpp"
 
 namespace xshell {
@@ -90,6 +96,9 @@ struct RunSummary {
   EnergyReport energy;
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::optional<double>> opening_angles;
+  std::optional<double> min_opening_angle, max_opening_angle;
+  std::vector<JointOutsideOpeningRange> joints_outside_opening_range;
+  std::vector<std::string> warnings;
   std::optional<int> default_support;
   std::vector<std::vector<int>> support_vertices;  // per configuration entry
   GraphTransform transform;

@@ -12,6 +12,7 @@
 #include "integrators/deployment/average_constraint.hpp"
 #include "integrators/deployment/constrained_newton.hpp"
 #include "integrators/deployment/constrained_objective.hpp"
+#include "linkage/opening_angle_range.hpp"
 
 namespace xshell {
 
@@ -230,6 +231,10 @@ class Deployer {
     row.step = step;
     row.fraction = s;
     row.average_angle = average_opening_angle(problem_.linkage());
+    const OpeningAngleRange range = opening_angle_range(problem_.linkage());
+    row.min_opening_angle = range.min.value_or(0.0);
+    row.max_opening_angle = range.max.value_or(0.0);
+    row.outside_opening_range = static_cast<int>(range.outside.size());
     row.energy = problem_.energy();
     row.torque = a.torque;
     row.iterations = a.solve.iterations;

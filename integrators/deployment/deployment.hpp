@@ -85,6 +85,10 @@ struct DeploymentStep {
   int step = 0;                // 0: the start; then 1, 2, ... per accepted step
   double fraction = 0.0;       // s, progress from the start (0) to the target (1)
   double average_angle = 0.0;  // mean opening angle over all joints, radians
+  // The smallest and largest opening angle of any joint (radians), and how
+  // many joints are outside (0, pi) (linkage/opening_angle_range.hpp).
+  double min_opening_angle = 0.0, max_opening_angle = 0.0;
+  int outside_opening_range = 0;
   EnergyReport energy;
   double torque = 0.0;  // dE/dA (or dE/dtheta for prescribed angles), energy per radian
   long iterations = 0;  // Newton iterations or dynamics time steps of this step

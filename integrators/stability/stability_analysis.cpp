@@ -24,8 +24,10 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
     out.buckling.status = BucklingStatus::NoBuckling;
     return out;
   }
+  // The same supports; the default pin is chosen again (the same joint) and
+  // holds that joint where it is, as it did in `problem`.
   StaticsSetup unloaded_setup;
-  unloaded_setup.supports = problem.supports();
+  if (problem.default_support_vertex() < 0) unloaded_setup.supports = problem.supports();
   LinkageProblem unloaded(problem.linkage(), unloaded_setup);
   LinkageObjective objective(unloaded);
   const NewtonResult relaxed = solve_newton(objective, options.unloaded_newton);

@@ -53,7 +53,13 @@ enum class SupportDof { Position, X, Y, Z, Orientation, OpeningAngle };
 // components held by Position / X / Y / Z may be displaced (ModelError
 // otherwise). The constructor sets the fixed unknowns to the displaced
 // values, so every solve starts from them; reactions are then those at the
-// displaced state.
+// displaced state. "input" is the linkage as built from its graph, whatever
+// state the linkage is in when the problem is made (a restart from a saved
+// state included; zero displacement too): the held positions depend on the
+// supports alone, and making the problem again from a solved state holds the
+// same positions. How far that moved each support's vertex is
+// LinkageProblem::support_start_offsets(). The default pin (no supports
+// given) holds its joint where it is.
 struct VertexSupport {
   int vertex = 0;
   std::vector<SupportDof> fix;
@@ -144,6 +150,11 @@ class LinkageProblem {
   // The supports in force (the default pin included), and whether a reduced
   // unknown is held by one.
   const std::vector<VertexSupport>& supports() const { return supports_; }
+  // Per supports() entry: how far the constructor moved the vertex's held
+  // position components (a joint's p, a free end's end node) from where the
+  // linkage was to where the support holds them (length; zero where it
+  // already was, and for the default pin).
+  const std::vector<Eigen::Vector3d>& support_start_offsets() const { return start_offsets_; }
   bool is_fixed(int reduced_index) const { return fixed_[reduced_index]; }
   // Dead loads: per segment on its full variables (gravity, forces at free
   // ends), and on the reduced unknowns (forces at joints).
@@ -176,6 +187,7 @@ class LinkageProblem {
   std::vector<bool> fixed_;
   std::vector<int> free_;
   std::vector<VertexSupport> supports_;
+  std::vector<Eigen::Vector3d> start_offsets_;  // per supports_ entry
   int default_support_ = -1;
   std::vector<Eigen::VectorXd> segment_forces_;  // dead loads on full variables
   Eigen::VectorXd point_forces_;                 // on reduced unknowns

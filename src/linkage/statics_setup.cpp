@@ -88,14 +88,16 @@ HeldComponents held_components(const VertexSupport& support) {
 // Checks a support's vertex and displacement, and moves the position
 // components it holds in `displaced` (reduced unknowns) to input +
 // displacement (the input: the graph's vertex, or a free end's input nodes,
-// both nodes of the end edge at a clamped end).
-void displace_support(const RodLinkage& l, const VertexSupport& support,
-                      Eigen::VectorXd& displaced) {
+// both nodes of the end edge at a clamped end), whatever state the linkage
+// is in (a restart from a saved state included), so that the supports are
+// those of the configuration alone. Returns how far that moved the vertex
+// (the joint's p or the free end's end node; held components only).
+Eigen::Vector3d displace_support(const RodLinkage& l, const VertexSupport& support,
+                                 Eigen::VectorXd& displaced) {
   check_vertex(support.vertex, static_cast<int>(l.graph().vertices.size()), "a support");
   if (!support.displacement.allFinite())
     throw ModelError("support at " + vertex_name(support.vertex) +
                      ": the displacement is not finite");
-  if (support.displacement.isZero(0.0)) return;
   const HeldComponents h = held_components(support);
   for (int c = 0; c < 3; ++c)
     if (support.displacement[c] != 0.0 && !h.held[c])
@@ -103,13 +105,17 @@ void displace_support(const RodLinkage& l, const VertexSupport& support,
                        ": its displacement moves the " + std::string(1, char('x' + c)) +
                        " component, which the support does not hold (fix \"position\" or \"" +
                        std::string(1, char('x' + c)) + "\")");
+  Eigen::Vector3d moved = Eigen::Vector3d::Zero();
   const int j = l.topology().joint_of_vertex[support.vertex];
   if (j >= 0) {
     const int o = l.joint_dof_offset(j) + kPosition;
     for (int c = 0; c < 3; ++c)
-      if (h.held[c])
-        displaced[o + c] = l.graph().vertices[support.vertex][c] + support.displacement[c];
-    return;
+      if (h.held[c]) {
+        const double held = l.graph().vertices[support.vertex][c] + support.displacement[c];
+        moved[c] = held - displaced[o + c];
+        displaced[o + c] = held;
+      }
+    return moved;
   }
   const RodLinkage::FreeEnd f = l.free_end(support.vertex);
   const int s = f.segment, end = f.end_node, next = f.next_node;
@@ -118,9 +124,13 @@ void displace_support(const RodLinkage& l, const VertexSupport& support,
     if (node == next && !f.clamped) continue;
     for (int c = 0; c < 3; ++c) {
       const int r = l.reduced_index(s, 3 * node + c);
-      if (h.held[c] && r >= 0) displaced[r] = input[3 * node + c] + support.displacement[c];
+      if (!h.held[c] || r < 0) continue;
+      const double held = input[3 * node + c] + support.displacement[c];
+      if (node == end) moved[c] = held - displaced[r];
+      displaced[r] = held;
     }
   }
+  return moved;
 }
 
 // Refuses supports that clamp other free ends than the linkage was built to
@@ -169,8 +179,13 @@ LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup)
     default_support_ = central_joint_vertex(linkage_, 0.5 * (box.lo + box.hi), length_scale_);
     supports_.push_back({default_support_, {SupportDof::Position, SupportDof::Orientation}});
   }
+  // The default pin holds its joint where the linkage is (it only removes
+  // the rigid motions); the given supports hold input + displacement.
   Eigen::VectorXd displaced = linkage_.dofs();
-  for (const VertexSupport& support : supports_) displace_support(linkage_, support, displaced);
+  for (const VertexSupport& support : supports_)
+    start_offsets_.push_back(default_support_ >= 0
+                                 ? Eigen::Vector3d::Zero()
+                                 : displace_support(linkage_, support, displaced));
   check_clamps(linkage_, supports_);
   linkage_.set_dofs(displaced);
   for (const VertexSupport& support : supports_) fix_support(support);

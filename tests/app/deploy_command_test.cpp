@@ -96,12 +96,19 @@ TEST_CASE(
     const Table t = read_table(dir / "out" / "deployment.csv");
     CHECK(t.header ==
           "step,average_angle,energy_total,energy_stretching,energy_bending,energy_twisting,torque,"
-          "iterations,stable");
+          "iterations,stable,min_opening_angle,max_opening_angle");
     REQUIRE(t.rows.size() == 5);  // step 0 and 4 steps
     for (size_t k = 0; k < t.rows.size(); ++k) {
-      REQUIRE(t.rows[k].size() == 9);
+      REQUIRE(t.rows[k].size() == 11);
       CHECK(std::stoi(t.rows[k][0]) == static_cast<int>(k));
       CHECK(t.rows[k][8] == "true");
+      // The average lies between the smallest and the largest angle.
+      const double average = std::stod(t.rows[k][1]), lo = std::stod(t.rows[k][9]),
+                   hi = std::stod(t.rows[k][10]);
+      CHECK(lo > 0.0);
+      CHECK(lo <= average);
+      CHECK(hi >= average);
+      CHECK(hi < M_PI);
     }
     const double last_angle = std::stod(t.rows.back()[1]),
                  last_torque = std::stod(t.rows.back()[6]);

@@ -112,4 +112,50 @@ TEST_CASE("A displacement of a component the support leaves free is refused") {
       propped_cantilever(10, {1, {SupportDof::Position}, Eigen::Vector3d(0.001, 0.001, 0.001)}));
 }
 
+TEST_CASE("A support holds input + displacement whatever state the linkage is in") {
+  // A restart from a saved state: the linkage is not at its input. The held
+  // position is input + displacement all the same (zero displacement too),
+  // continuous in the displacement, and the problem says how far it moved
+  // the vertex; made again from its own state, it moves nothing.
+  LineGraph x;
+  x.vertices = {{0, 0, 0}, {-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}};
+  x.edges = {{1, 0}, {0, 2}, {3, 0}, {0, 4}};
+  LinkageOptions o;
+  o.subdivisions = 6;
+  o.rest_shape = RestShape::Straight;
+  o.material.young_modulus = 1e4;
+  o.material.section = {SectionShape::Rectangle, 0.05, 0.03};
+  RodLinkage moved(x, o);
+  const Eigen::Vector3d shift(0.3, 0.0, 0.1);
+  Eigen::VectorXd q = moved.dofs();
+  q.segment<3>(moved.joint_dof_offset(0) + kPosition) += shift;
+  moved.set_dofs(q);
+  int checked = 0;
+  for (const Eigen::Vector3d& d : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 1e-6)}) {
+    CAPTURE(d.z());
+    StaticsSetup setup;
+    setup.supports = {{0, {SupportDof::Position, SupportDof::Orientation}, d}};
+    const LinkageProblem problem(moved, setup);
+    CHECK((problem.vertex_positions()[0] - (x.vertices[0] + d)).norm() <= 1e-15);
+    REQUIRE(problem.support_start_offsets().size() == 1);
+    CHECK((problem.support_start_offsets()[0] - (d - shift)).norm() <= 1e-15);
+    const LinkageProblem again(problem.linkage(), setup);
+    CHECK(again.support_start_offsets()[0].norm() == 0.0);
+    CHECK(again.vertex_positions()[0] == problem.vertex_positions()[0]);
+    ++checked;
+  }
+  CHECK(checked == 2);
+  // A roller holds (and moves) only its component.
+  StaticsSetup roller;
+  roller.supports = {{0, {SupportDof::Z}}};
+  const LinkageProblem rolled(moved, roller);
+  CHECK(rolled.support_start_offsets()[0] == Eigen::Vector3d(0, 0, -0.1));
+  CHECK(rolled.vertex_positions()[0].x() == 0.3);
+  // The default pin holds its joint where it is.
+  const LinkageProblem pinned(moved, StaticsSetup{});
+  CHECK(pinned.default_support_vertex() == 0);
+  CHECK(pinned.vertex_positions()[0] == x.vertices[0] + shift);
+  CHECK(pinned.support_start_offsets()[0].norm() == 0.0);
+}
+
 }  // namespace xshell::test
