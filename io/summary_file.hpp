@@ -21,6 +21,11 @@
 //                     free end's end node or a clamped free end's end edge midpoint
 //   opening_angles    per vertex, radians; null for free ends
 //   default_support   the vertex pinned when no support was given, else null
+//   saddles_escaped   the saddles the solver converged to and left downhill along negative
+//                     curvature ("solver.escape_saddles"), in order: {energy (total at the
+//                     saddle), lowest_eigenvalue (of H phi = lambda M phi there, 1/time^2, < 0),
+//                     step (the deployment step being solved; null outside a deployment)};
+//                     empty when none was met
 //   history           per iteration/step: {iteration, time, energy, gradient_norm, step,
 //                     kinetic_energy, seconds}; kinetic damping keeps only its resets and
 //                     every 100th iteration
@@ -56,6 +61,13 @@ struct IterationRecord {
   double seconds = 0.0;
 };
 
+// An element of "saddles_escaped" (see above).
+struct SaddleSummary {
+  double energy = 0.0;
+  double lowest_eigenvalue = 0.0;
+  std::optional<int> step;
+};
+
 // The "deployment" object (see above).
 struct DeploymentSummary {
   std::string actuation;  // "average_opening_angle" | "joint_angles"
@@ -85,6 +97,7 @@ struct RunSummary {
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::optional<double>> opening_angles;
   std::optional<int> default_support;
+  std::vector<SaddleSummary> saddles_escaped;
   std::vector<IterationRecord> history;
   std::optional<DeploymentSummary> deployment;  // runs with a "deployment" only
   nlohmann::json configuration;
