@@ -287,7 +287,7 @@ SolverOptions read_solver(const JsonField& f) {
   if (auto direction = f.find("buckling_direction")) {
     s.buckling_direction = direction->vector3();
     if (!(s.buckling_direction.norm() > 0.0))
-      direction->fail("expected a non-zero direction [x, y, z], got [0, 0, 0]");
+      direction->fail("expected a non-zero direction [x, y, z], got one of length 0");
   }
   return s;
 }
