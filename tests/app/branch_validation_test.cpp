@@ -38,6 +38,20 @@ struct Deployed {
   double mean_z = 0.0;              // of the vertices, at the end
 };
 
+// deployment.csv's last column ("stable"), per step.
+std::vector<std::string> stable_column(const fs::path& csv) {
+  std::vector<std::string> out;
+  const std::string table = read_text(csv);
+  size_t start = table.find('\n') + 1;
+  while (start < table.size()) {
+    const size_t end = table.find('\n', start);
+    const std::string row = table.substr(start, end - start);
+    out.push_back(row.substr(row.rfind(',') + 1));
+    start = end + 1;
+  }
+  return out;
+}
+
 Deployed deploy(const fs::path& dir, const nlohmann::json& config) {
   write_text(dir / "run.json", config.dump(2));
   const CommandResult r = run_xshell("relax run.json", dir);
@@ -45,14 +59,7 @@ Deployed deploy(const fs::path& dir, const nlohmann::json& config) {
   REQUIRE(r.status == 0);
   Deployed d;
   d.summary = read_json(dir / "out" / "summary.json");
-  const std::string table = read_text(dir / "out" / "deployment.csv");
-  size_t start = table.find('\n') + 1;
-  while (start < table.size()) {
-    const size_t end = table.find('\n', start);
-    const std::string row = table.substr(start, end - start);
-    d.stable.push_back(row.substr(row.rfind(',') + 1));
-    start = end + 1;
-  }
+  d.stable = stable_column(dir / "out" / "deployment.csv");
   const nlohmann::json& vertices = d.summary["vertices"];
   for (const auto& v : vertices) d.mean_z += v[2].get<double>() / vertices.size();
   return d;
@@ -137,6 +144,45 @@ TEST_CASE("darth vader opened at two joints to 2 rad leaves the flat state up, s
   CHECK(up.mean_z > 1.0);
   MESSAGE("darth vader, joints 19 and 60 to 2 rad: mean z "
           << up.mean_z << " mm; " << up.summary["iterations"] << " Newton iterations");
+}
+
+// The largest design relaxed from flat (no supports: the centre joint
+// pinned) first converges to a flat saddle, then reaches a stable state from
+// which a deployment by +0.3 rad is stable at every step (n_s = 8; n_s = 10
+// in the README).
+TEST_CASE("largest design: relaxed past its flat saddle, then deployed by 0.3 rad" *
+          doctest::test_suite("validation")) {
+  if (!fs::exists(kData / "large_6d35a972.obj")) XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
+  const fs::path dir = temporary_directory("largest_saddle");
+  nlohmann::json config = design_config("large_6d35a972.obj", nullptr, nlohmann::json::object());
+  config.erase("deployment");
+  write_text(dir / "relax.json", config.dump(2));
+  const CommandResult relaxed = run_xshell("relax relax.json --out relaxed", dir);
+  CAPTURE(relaxed.errors);
+  REQUIRE(relaxed.status == 0);
+  const nlohmann::json s = read_json(dir / "relaxed" / "summary.json");
+  CHECK(s["stable"] == true);
+  REQUIRE(s["saddles_escaped"].size() >= 1);
+  CHECK(s["saddles_escaped"][0]["lowest_eigenvalue"].get<double>() < 0.0);
+  CHECK(s["energy"]["total"].get<double>() < s["saddles_escaped"][0]["energy"].get<double>());
+  double average = 0.0;
+  int joints = 0;
+  for (const auto& a : s["opening_angles"])
+    if (!a.is_null()) average += a.get<double>(), ++joints;
+  average /= joints;
+  config["deployment"] = {{"average_opening_angle", average + 0.3}, {"steps", 10}};
+  write_text(dir / "deploy.json", config.dump(2));
+  const CommandResult deployed =
+      run_xshell("relax deploy.json --init relaxed/state.json --out deployed", dir);
+  CAPTURE(deployed.errors);
+  REQUIRE(deployed.status == 0);
+  Deployed d;
+  d.summary = read_json(dir / "deployed" / "summary.json");
+  d.stable = stable_column(dir / "deployed" / "deployment.csv");
+  check_every_step_stable(d, 10);
+  MESSAGE("largest design, n_s = 8: saddle " << s["saddles_escaped"][0]["energy"] << ", stable "
+                                             << s["energy"]["total"] << " after " << s["iterations"]
+                                             << " iterations");
 }
 
 }  // namespace xshell::test
