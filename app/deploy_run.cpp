@@ -43,6 +43,7 @@ DeploymentOptions deployment_options(const Config& config) {
                                                             : DeploymentSolver::Newton;
   o.newton = newton_options(config.solver);
   o.dynamics = dynamics_options(config.solver);
+  o.buckling_direction = config.solver.buckling_direction;
   return o;
 }
 

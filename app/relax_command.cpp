@@ -12,6 +12,7 @@
 #include "engineering_outputs.hpp"
 #include "exit_status.hpp"
 #include "integrators/common/linkage_objective.hpp"
+#include "integrators/stability/branch_bias.hpp"
 #include "io/config.hpp"
 #include "io/fabrication_file.hpp"
 #include "io/input_error.hpp"
@@ -241,7 +242,8 @@ SolverRun solve(Run& run, bool progress, const std::atomic<bool>& stop, Outputs&
   if (run.config.deployment)
     return run_deployment(run.config, *run.problem, run.config.output.directory, hooks);
   LinkageObjective objective(*run.problem);
-  return run_solver(run.config, objective, hooks);
+  return run_solver(run.config, objective, hooks,
+                    branch_bias(*run.problem, run.config.solver.buckling_direction));
 }
 
 // The range of the final state's opening angles, and a warning for the
@@ -268,6 +270,10 @@ void record_result(const SolverRun& solved, bool interrupted, const FreeMotions&
   summary.gradient_norm = result.gradient_measure;
   summary.simulated_time = solved.simulated_time;
   summary.deployment = solved.deployment;
+  for (const SaddleRecord& saddle : result.saddles_escaped)
+    summary.saddles_escaped.push_back(
+        {saddle.energy, saddle.lowest_eigenvalue,
+         saddle.step >= 0 ? std::optional<int>(saddle.step) : std::nullopt});
   if (interrupted) {
     summary.status = to_string(SolveStatus::Interrupted);
     summary.reason = "interrupted by a signal";

@@ -13,6 +13,7 @@ NewtonOptions newton_options(const SolverOptions& solver) {
   o.line_search = solver.line_search == LineSearchSetting::Energy
                       ? LineSearch::Energy
                       : LineSearch::KinsolWithEnergyFallback;
+  o.escape.enabled = solver.escape_saddles;
   return o;
 }
 
@@ -25,6 +26,7 @@ DynamicsOptions dynamics_options(const SolverOptions& solver) {
   o.damping.coefficient = solver.damping.value_or(0.0);
   o.stopping.gradient_tolerance = solver.gradient_tolerance;
   o.stopping.max_steps = solver.step_limit();
+  o.escape.enabled = solver.escape_saddles;
   return o;
 }
 
@@ -65,13 +67,16 @@ std::function<void(const Report&)> record_reports(const RunHooks& hooks) {
   };
 }
 
-SolverRun run_newton(const SolverOptions& solver, Objective& objective, const RunHooks& hooks) {
+SolverRun run_newton(const SolverOptions& solver, Objective& objective, const RunHooks& hooks,
+                     const Eigen::VectorXd& branch_bias) {
   NewtonCallbacks callbacks;
   callbacks.stop = hooks.stop;
   callbacks.on_iteration = record_reports<NewtonReport>(hooks);
   hooks.poll();
   SolverRun run;
-  run.result = solve_newton(objective, newton_options(solver), callbacks);
+  NewtonOptions options = newton_options(solver);
+  options.escape.bias = branch_bias;
+  run.result = solve_newton(objective, options, callbacks);
   return run;
 }
 
@@ -109,12 +114,15 @@ SolverRun run_kinetic_damping(const SolverOptions& solver, Objective& objective,
   return run;
 }
 
-SolverRun run_dynamics(const SolverOptions& solver, Objective& objective, const RunHooks& hooks) {
+SolverRun run_dynamics(const SolverOptions& solver, Objective& objective, const RunHooks& hooks,
+                       const Eigen::VectorXd& branch_bias) {
   DynamicsCallbacks callbacks;
   callbacks.stop = hooks.stop;
   callbacks.on_step = record_reports<DynamicsReport>(hooks);
   hooks.poll();
-  const DynamicsResult result = solve_dynamics(objective, dynamics_options(solver), callbacks);
+  DynamicsOptions options = dynamics_options(solver);
+  options.escape.bias = branch_bias;
+  const DynamicsResult result = solve_dynamics(objective, options, callbacks);
   SolverRun run;
   run.result = result;
   run.simulated_time = result.time;
@@ -123,18 +131,19 @@ SolverRun run_dynamics(const SolverOptions& solver, Objective& objective, const 
 
 }  // namespace
 
-SolverRun run_solver(const Config& config, Objective& objective, const RunHooks& hooks) {
+SolverRun run_solver(const Config& config, Objective& objective, const RunHooks& hooks,
+                     const Eigen::VectorXd& branch_bias) {
   hooks.snapshot(0.0, true);
   SolverRun run;
   switch (config.solver.method) {
     case SolverMethod::Newton:
-      run = run_newton(config.solver, objective, hooks);
+      run = run_newton(config.solver, objective, hooks, branch_bias);
       break;
     case SolverMethod::KineticDamping:
       run = run_kinetic_damping(config.solver, objective, hooks);
       break;
     case SolverMethod::Dynamics:
-      run = run_dynamics(config.solver, objective, hooks);
+      run = run_dynamics(config.solver, objective, hooks, branch_bias);
       break;
   }
   // The final state: at its time, or numbered after the last iteration.

@@ -48,8 +48,11 @@ NewtonOptions newton_options(const SolverOptions& solver);
 DynamicsOptions dynamics_options(const SolverOptions& solver);
 
 // Runs config.solver.method on `objective` from its current state, with a
-// VTK step of the first and of the final state (forced).
-SolverRun run_solver(const Config& config, Objective& objective, const RunHooks& hooks);
+// VTK step of the first and of the final state (forced). branch_bias: over
+// the objective's unknowns, the side saddles are left by
+// (integrators/stability/branch_bias.hpp; empty: no preference).
+SolverRun run_solver(const Config& config, Objective& objective, const RunHooks& hooks,
+                     const Eigen::VectorXd& branch_bias = {});
 
 // One line per reported iteration (or time step), on stderr; nested: as
 // the deployment prints them, indented under its step lines.

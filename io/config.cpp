@@ -272,7 +272,7 @@ Loads read_loads(const JsonField& f) {
 
 SolverOptions read_solver(const JsonField& f) {
   f.check_keys({"method", "gradient_tolerance", "max_iterations", "line_search", "mass", "damping",
-                "first_order", "start", "max_steps"});
+                "first_order", "start", "max_steps", "escape_saddles", "buckling_direction"});
   SolverOptions s;
   if (auto method = f.find("method")) s.method = method->choice(kMethods);
   if (auto tol = f.find("gradient_tolerance")) s.gradient_tolerance = positive(*tol);
@@ -290,6 +290,12 @@ SolverOptions read_solver(const JsonField& f) {
   if (auto first_order = f.find("first_order")) s.first_order = first_order->boolean();
   if (auto start = f.find("start")) s.start = start->choice(kStarts);
   if (auto n = f.find("max_steps")) s.max_steps = at_least(*n, 1);
+  if (auto escape = f.find("escape_saddles")) s.escape_saddles = escape->boolean();
+  if (auto direction = f.find("buckling_direction")) {
+    s.buckling_direction = direction->vector3();
+    if (!(s.buckling_direction.norm() > 0.0))
+      direction->fail("expected a non-zero direction [x, y, z], got one of length 0");
+  }
   return s;
 }
 
@@ -488,7 +494,9 @@ nlohmann::json to_json(const Config& c) {
         {"damping", s.damping ? nlohmann::json(*s.damping) : nlohmann::json("auto")},
         {"first_order", s.first_order},
         {"start", name_of(s.start, kStarts)},
-        {"max_steps", s.step_limit()}}},
+        {"max_steps", s.step_limit()},
+        {"escape_saddles", s.escape_saddles},
+        {"buckling_direction", vector_json(s.buckling_direction)}}},
       {"output",
        {{"directory", c.output.directory},
         {"every", c.output.every},

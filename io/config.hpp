@@ -199,6 +199,14 @@ struct SolverOptions {
                                  // iterations (kinetic-damping); default: step_limit()
   // max_steps, or its default for the method: 5000 time steps of damped
   // dynamics, 1000000 leapfrog iterations of kinetic damping.
+  // "escape_saddles", default true: a converged equilibrium that is a saddle
+  // (negative curvature) is left downhill along its lowest mode until a
+  // stable one is reached; false reports the saddle itself.
+  bool escape_saddles = true;
+  // "buckling_direction", [x, y, z] not zero, default [0, 0, 1]: the side a
+  // symmetric (e.g. flat) linkage leaves its symmetric state by: escapes
+  // are signed so that the joints' mean displacement along it is positive.
+  Eigen::Vector3d buckling_direction = Eigen::Vector3d::UnitZ();
   int step_limit() const {
     return max_steps.value_or(method == SolverMethod::KineticDamping ? 1000000 : 5000);
   }

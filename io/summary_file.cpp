@@ -44,6 +44,11 @@ nlohmann::json to_json(const RunSummary& s) {
                        {"step", h.step},
                        {"kinetic_energy", h.kinetic_energy},
                        {"seconds", h.seconds}});
+  json saddles = json::array();
+  for (const auto& a : s.saddles_escaped)
+    saddles.push_back({{"energy", a.energy},
+                       {"lowest_eigenvalue", a.lowest_eigenvalue},
+                       {"step", a.step ? json(*a.step) : json(nullptr)}});
   json out = {{"status", s.status},
               {"reason", s.reason},
               {"converged", s.converged},
@@ -72,6 +77,7 @@ nlohmann::json to_json(const RunSummary& s) {
               {"default_support", s.default_support ? json(*s.default_support) : json(nullptr)},
               {"supports", supports_json(s.support_vertices)},
               {"transform", s.transform.is_identity() ? json(nullptr) : applied(s.transform)},
+              {"saddles_escaped", saddles},
               {"history", history},
               {"configuration", s.configuration},
               {"version", s.version}};

@@ -31,6 +31,11 @@
 //                     what its "select" selected)}
 //   transform         null, or the "transform" applied to the input: {mirror, scale,
 //                     rotate_deg, translate, matrix (4 x 4, rows: x_out = M [x_in; 1])}
+//   saddles_escaped   the saddles the solver converged to and left downhill along negative
+//                     curvature ("solver.escape_saddles"), in order: {energy (total at the
+//                     saddle), lowest_eigenvalue (of H phi = lambda M phi there, 1/time^2, < 0),
+//                     step (the deployment step being solved; null outside a deployment)};
+//                     empty when none was met
 //   history           per iteration/step: {iteration, time, energy, gradient_norm, step,
 //                     kinetic_energy, seconds}; kinetic damping keeps only its resets and
 //                     every 100th iteration
@@ -68,6 +73,13 @@ struct IterationRecord {
   double seconds = 0.0;
 };
 
+// An element of "saddles_escaped" (see above).
+struct SaddleSummary {
+  double energy = 0.0;
+  double lowest_eigenvalue = 0.0;
+  std::optional<int> step;
+};
+
 // The "deployment" object (see above).
 struct DeploymentSummary {
   std::string actuation;  // "average_opening_angle" | "joint_angles"
@@ -102,6 +114,7 @@ struct RunSummary {
   std::optional<int> default_support;
   std::vector<std::vector<int>> support_vertices;  // per configuration entry
   GraphTransform transform;
+  std::vector<SaddleSummary> saddles_escaped;
   std::vector<IterationRecord> history;
   std::optional<DeploymentSummary> deployment;  // runs with a "deployment" only
   nlohmann::json configuration;

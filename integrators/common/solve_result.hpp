@@ -22,6 +22,7 @@
 
 #include <atomic>
 #include <string>
+#include <vector>
 
 namespace xshell {
 
@@ -53,6 +54,13 @@ const char* to_string(SolveStatus status);
 // values", "interrupted", "step failed".
 const char* describe(SolveStatus status);
 
+// A saddle that a solver left downhill (integrators/stability/saddle_escape.hpp).
+struct SaddleRecord {
+  double energy = 0.0;             // total energy at the saddle
+  double lowest_eigenvalue = 0.0;  // lambda_min of H phi = lambda M phi there (1/time^2)
+  int step = -1;                   // the deployment step being solved (-1: not a deployment)
+};
+
 struct SolveResult {
   SolveStatus status = SolveStatus::IterationLimit;
   std::string reason;             // one line
@@ -66,6 +74,9 @@ struct SolveResult {
   double setup_seconds = 0.0;  // wall time before the first iteration (0 where not measured:
                                // dynamics, kinetic damping, deployment)
   double seconds = 0.0;        // wall time of the whole solve, setup included
+  // Saddles the solve converged to and left along negative curvature, in
+  // order (empty when it met none, or with the escape switched off).
+  std::vector<SaddleRecord> saddles_escaped;
   bool converged() const { return status == SolveStatus::Converged; }
 };
 

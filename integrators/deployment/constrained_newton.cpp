@@ -1,7 +1,6 @@
 #include "integrators/deployment/constrained_newton.hpp"
 
 #include <cmath>
-#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -40,6 +39,9 @@ struct ConstrainedRun {
   double best_measure = 0.0;
   int stalled = 0;  // iterations since the measure last halved, at a constant energy
   long factorizations_at_start = 0;
+  // Iterations done when the last saddle was left: the iteration limit
+  // counts from there (the descent from a saddle is a solve of its own).
+  long iterations_at_escape = 0;
 };
 
 // The Newton step p and its multiplier tau.
@@ -77,7 +79,7 @@ struct ConstrainedNewtonSolver::Impl {
   void record_step(ConstrainedRun& run, const Eigen::VectorXd& q0, double e0,
                    const Eigen::VectorXd& w);
   bool escape(ConstrainedRun& run);
-  bool escape_saddle(const Eigen::VectorXd& mass);
+  bool escape_saddle(ConstrainedRun& run);
   void finish(ConstrainedRun& run);
 };
 
@@ -88,6 +90,7 @@ ConstrainedNewtonSolver::ConstrainedNewtonSolver(Objective& objective,
       constraint_(constraint),
       options_(options),
       impl_(std::make_unique<Impl>(objective, constraint, options_)) {
+  max_saddle_escapes = options_.escape.enabled ? options_.escape.max_escapes : 0;
   if (objective.size() != constraint.size())
     throw std::invalid_argument("constrained Newton: the constraint does not fit the objective");
 }
@@ -134,7 +137,8 @@ bool ConstrainedNewtonSolver::Impl::finished(ConstrainedRun& run) {
   else if (run.stalled >= kStalledIterations)
     check.stagnation =
         "no progress in " + std::to_string(kStalledIterations) + " iterations at a constant energy";
-  return iteration_finished(check, run.callbacks.stop, options.max_iterations, run.result);
+  return iteration_finished(check, run.callbacks.stop,
+                            options.max_iterations + run.iterations_at_escape, run.result);
 }
 
 // One iteration after a rebase: the step (Schur complement, or the null
@@ -292,9 +296,10 @@ bool ConstrainedNewtonSolver::Impl::escape(ConstrainedRun& run) {
   const Clock::time_point escape_start = Clock::now();
   const long factorizations_at_escape = factorizations();
   const Eigen::VectorXd q_saddle = objective.get();
-  if (!escape_saddle(run.mass)) return false;
+  if (!escape_saddle(run)) return false;
   ++result.saddle_escapes;
   ++run.iteration;
+  run.iterations_at_escape = run.iteration;
   evaluator.sync();
   NewtonReport& report = run.report;
   report.iteration = run.iteration;
@@ -319,48 +324,28 @@ void ConstrainedNewtonSolver::Impl::finish(ConstrainedRun& run) {
   run.result.factorizations = factorizations() - run.factorizations_at_start;
 }
 
-bool ConstrainedNewtonSolver::Impl::escape_saddle(const Eigen::VectorXd& mass) {
+// The lowest mode of B^T H B (mass diag(B^T M B), shift-invert on the
+// reduced solver's analysis; saddle_escape.hpp), signed by the branch bias
+// carried to z, and the step downhill along B z. Records the saddle.
+bool ConstrainedNewtonSolver::Impl::escape_saddle(ConstrainedRun& run) {
   const Eigen::SparseMatrix<double> Hz = constraint.reduce(objective.hessian());
-  const Eigen::VectorXd Mz = constraint.reduce_diagonal(mass);
-  const ShiftedFactorization f = factorize_with_shift(reduced, Hz, Mz, options.shift);
-  if (f.status != FactorizationStatus::PositiveDefinite) return false;
-  // Inverse iteration with Hz + shift Mz: converges to the eigenvector of
-  // the most negative eigenvalue of (Hz, Mz), the one nearest -shift.
-  std::mt19937 rng(2024);
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  Eigen::VectorXd x(Hz.rows());
-  for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = uniform(rng);
-  for (int k = 0; k < 30; ++k) {
-    x = reduced.solve(Eigen::VectorXd(Mz.cwiseProduct(x)));
-    x /= std::sqrt(x.dot(Mz.cwiseProduct(x)));
-  }
-  if (!x.allFinite() || !(x.dot(Hz * x) < 0.0)) return false;
-  Eigen::VectorXd d = constraint.expand(x);
-  Eigen::Index largest = 0;
-  d.cwiseAbs().maxCoeff(&largest);
-  d /= d[largest];  // largest entry +1: a deterministic side
-  const Eigen::VectorXd q0 = objective.get();
+  const Eigen::VectorXd Mz = constraint.reduce_diagonal(run.mass);
+  SaddleEscapeOptions escape = options.escape;
+  if (escape.bias.size() == objective.size())
+    escape.bias = constraint.restrict(options.escape.bias);
+  else
+    escape.bias.resize(0);
   const double e0 = objective.energy();
-  double best_t = 0.0, best_e = e0;
-  for (double t = 1e-3 * std::max(1.0, q0.lpNorm<Eigen::Infinity>()), k = 0; k < 16;
-       t *= 2.0, ++k) {
-    double e = 0.0;
-    try {
-      objective.set(q0 + t * d);
-      e = objective.energy();
-    } catch (const std::domain_error&) {
-      break;
-    }
-    if (!std::isfinite(e)) break;
-    if (e < best_e) {
-      best_e = e;
-      best_t = t;
-    } else if (best_t > 0.0) {
-      break;
-    }
-  }
-  objective.set(q0 + best_t * d);
-  return best_t > 0.0;
+  const NegativeMode mode = negative_mode(Hz, Mz, reduced, escape);
+  if (!mode.found || !mode.negative) return false;
+  Eigen::VectorXd d = constraint.expand(mode.vector);
+  d /= d.lpNorm<Eigen::Infinity>();  // largest entry of magnitude 1, the sign kept
+  if (!(step_downhill(objective, d, escape) > 0.0)) return false;
+  SaddleRecord saddle;
+  saddle.energy = e0;
+  saddle.lowest_eigenvalue = mode.eigenvalue;
+  run.result.saddles_escaped.push_back(saddle);
+  return true;
 }
 
 Eigen::VectorXd ConstrainedNewtonSolver::tangent() {

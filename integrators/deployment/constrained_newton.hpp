@@ -28,11 +28,13 @@
 // Saddles: Newton converges to them as happily as to minima, e.g. a flat
 // linkage held in its plane by symmetry while opening it has made buckling
 // out of the plane favourable. At a converged but unstable state the solver
-// leaves along the most negative curvature direction d of B^T H B (inverse
-// iteration on its shifted factorization; the sign that makes d's largest
-// entry positive), to the lowest energy among trial amplitudes doubling
-// from 1e-3 |q|_inf, and iterates on (the reference implementation likewise
-// adds a negative-curvature direction near saddles).
+// leaves along the most negative curvature direction of B^T H B (its lowest
+// mode, mass diag(B^T M B), by shift-invert Lanczos on the reduced solver's
+// symbolic analysis; signed by NewtonOptions::escape.bias carried to the
+// null space, B^T bias: the user's branch; saddle_escape.hpp), to the
+// lowest energy among the trial amplitudes there, and iterates on (the
+// reference implementation likewise adds a negative-curvature direction
+// near saddles). Each saddle left is recorded in saddles_escaped.
 //
 // KINSOL is not used: it solves F(q) = 0 and knows nothing of the bordered
 // system; the steps, line search and reports follow newton.hpp.
@@ -82,8 +84,9 @@ class ConstrainedNewtonSolver {
 
   // Residual tolerance on |A - a . q| (units of the averaged unknowns).
   double constraint_tolerance = 1e-12;
-  // Escapes from unstable equilibria per solve (0: report saddles as they are).
-  int max_saddle_escapes = 2;
+  // Escapes from unstable equilibria per solve (0: report saddles as they
+  // are); from NewtonOptions::escape (max_escapes, or 0 when not enabled).
+  int max_saddle_escapes = 0;
 
  private:
   struct Impl;

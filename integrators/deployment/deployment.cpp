@@ -13,6 +13,7 @@
 #include "integrators/deployment/constrained_newton.hpp"
 #include "integrators/deployment/constrained_objective.hpp"
 #include "linkage/opening_angle_range.hpp"
+#include "integrators/stability/branch_bias.hpp"
 
 namespace xshell {
 
@@ -59,13 +60,18 @@ class Deployer {
         start_angles_.push_back(linkage.joint(p.joint).opening_angle());
       }
     }
+    // The user's branch: saddles are left on its side (dynamics under the
+    // average constraint sees the null-space coordinates z).
+    const Eigen::VectorXd bias = branch_bias(problem, options.buckling_direction);
+    options_.newton.escape.bias = bias;
+    options_.dynamics.escape.bias = constraint_ ? constraint_->restrict(bias) : bias;
     // The constrained Newton solver also computes the tangent predictor.
     if (constraint_ && (options.solver == DeploymentSolver::Newton ||
                         options.predictor == DeploymentPredictor::Tangent))
       constrained_newton_ =
-          std::make_unique<ConstrainedNewtonSolver>(objective_, *constraint_, options.newton);
+          std::make_unique<ConstrainedNewtonSolver>(objective_, *constraint_, options_.newton);
     if (!constraint_ && options.solver == DeploymentSolver::Newton)
-      newton_ = std::make_unique<NewtonSolver>(objective_, options.newton);
+      newton_ = std::make_unique<NewtonSolver>(objective_, options_.newton);
   }
 
   DeploymentResult run() {
@@ -239,6 +245,11 @@ class Deployer {
     row.torque = a.torque;
     row.iterations = a.solve.iterations;
     row.stable = a.solve.stable;
+    row.saddles_escaped = static_cast<int>(a.solve.saddles_escaped.size());
+    for (SaddleRecord saddle : a.solve.saddles_escaped) {
+      saddle.step = step;
+      result_.saddles_escaped.push_back(saddle);
+    }
     row.gradient_measure = a.solve.gradient_measure;
     row.halvings = halvings;
     row.seconds = earlier_seconds + seconds_since(start);
@@ -264,7 +275,7 @@ class Deployer {
 
   LinkageProblem& problem_;
   const DeploymentPlan& plan_;
-  const DeploymentOptions& options_;
+  DeploymentOptions options_;  // with the branch bias of this problem
   const DeploymentCallbacks& callbacks_;
   LinkageObjective objective_;
   std::optional<AverageConstraint> constraint_;

@@ -28,7 +28,13 @@
 // last accepted state) and retried with half the increment, at most
 // max_halvings times in a row; after a success the increment doubles back
 // up to the nominal one, and steps always land on the nominal grid
-// s = k / steps. Unstable equilibria (saddles) are accepted and reported.
+// s = k / steps. Every step's solve checks the stability of its equilibrium
+// (on the constraint's tangent space under the average actuation) and, by
+// default, leaves a saddle downhill along negative curvature on the side of
+// buckling_direction, so the continuation follows the stable branch through
+// a bifurcation (a flat linkage popping out of its plane). With the escape
+// off (newton.escape.enabled, dynamics.escape.enabled) saddles are accepted
+// and reported as unstable steps.
 #pragma once
 
 #include <atomic>
@@ -78,6 +84,11 @@ struct DeploymentOptions {
   NewtonOptions newton;      // line_search is ignored under the average constraint
   DynamicsOptions dynamics;  // per step, from its start (DynamicsOptions::start)
   int max_halvings = 6;      // consecutive halvings of a failing increment
+  // The user's branch (branch_bias.hpp): at every step a converged saddle
+  // is left (newton.escape, dynamics.escape; their bias is set from this
+  // direction) on the side where the vertices' mean displacement along it
+  // is positive.
+  Eigen::Vector3d buckling_direction = Eigen::Vector3d::UnitZ();
 };
 
 // One accepted step: one row of deployment.csv.
@@ -90,9 +101,10 @@ struct DeploymentStep {
   double min_opening_angle = 0.0, max_opening_angle = 0.0;
   int outside_opening_range = 0;
   EnergyReport energy;
-  double torque = 0.0;  // dE/dA (or dE/dtheta for prescribed angles), energy per radian
-  long iterations = 0;  // Newton iterations or dynamics time steps of this step
-  bool stable = false;  // unshifted LL^T of the (constrained) Hessian succeeded
+  double torque = 0.0;      // dE/dA (or dE/dtheta for prescribed angles), energy per radian
+  long iterations = 0;      // Newton iterations or dynamics time steps of this step
+  bool stable = false;      // unshifted LL^T of the (constrained) Hessian succeeded
+  int saddles_escaped = 0;  // saddles this step's solve converged to and left
   double gradient_measure = 0.0;
   int halvings = 0;      // failed attempts before this step was accepted
   double seconds = 0.0;  // wall time of the step, failed attempts included

@@ -52,6 +52,7 @@
 #include "integrators/common/solve_result.hpp"
 #include "integrators/dynamics/ida_system.hpp"
 #include "integrators/linear_algebra/shifted_factorization.hpp"
+#include "integrators/stability/saddle_escape.hpp"
 
 namespace xshell {
 
@@ -197,6 +198,10 @@ struct DynamicsOptions {
   EndgameOptions endgame;
   // Shifted factorizations of an indefinite Hessian: damping estimate, refresh, end game.
   ShiftOptions shift;
+  // A converged state that is a saddle (round-off kept the motion on it, as
+  // from a symmetric start): left along its lowest mode, as Newton does,
+  // and integrated on from rest (enabled by default).
+  SaddleEscapeOptions escape;
 };
 
 // One per accepted step, and one for the initial state (step 0).

@@ -9,6 +9,9 @@ NewtonResult run_endgame(Objective& objective, const DynamicsOptions& options, i
   newton.gradient_tolerance = options.stopping.gradient_tolerance;
   newton.max_iterations = max_iterations;
   newton.shift = options.shift;
+  // A saddle is left by solve_dynamics itself (options.escape), which
+  // integrates on from there: the end game only polishes.
+  newton.escape.enabled = false;
   NewtonCallbacks forward;
   forward.stop = callbacks.stop;
   forward.on_iteration = [&](const NewtonReport& r) {

@@ -30,6 +30,9 @@ struct NewtonRun {
   NewtonReport report;               // of the last iteration (or the start)
   bool stagnant = false;             // the last step was below the scaled step tolerance
   long factorizations_at_start = 0;  // of the solver's CHOLMOD counter
+  // Iterations done when the last saddle was left: the iteration limit
+  // counts from there (the descent from a saddle is a solve of its own).
+  long iterations_at_escape = 0;
 };
 
 }  // namespace
@@ -88,6 +91,7 @@ struct NewtonSolver::Impl {
   void restore(const Eigen::VectorXd& q0);
   void rethrow_if_fatal(const Eigen::VectorXd& q0);
   void finish(NewtonRun& run);
+  bool escape(int& iteration, NewtonRun& run);
 };
 
 NewtonSolver::NewtonSolver(Objective& objective, NewtonOptions options)
@@ -152,9 +156,12 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
   }
   impl_->start(run);
   run.result.setup_seconds = seconds_since(start);
-  for (int iteration = 0; !impl_->finished(iteration, run); ++iteration)
-    if (!impl_->iterate(iteration, run)) break;
-  impl_->finish(run);
+  int iteration = 0;
+  do {  // iterations, and again after each escape from a saddle
+    for (; !impl_->finished(iteration, run); ++iteration)
+      if (!impl_->iterate(iteration, run)) break;
+    impl_->finish(run);
+  } while (impl_->escape(iteration, run));
   run.result.seconds = seconds_since(start);
   return run.result;
 }
@@ -186,7 +193,8 @@ bool NewtonSolver::Impl::finished(int iteration, NewtonRun& run) {
   check.gradient_measure = run.report.gradient_measure;
   check.converged = run.report.gradient_measure <= options.gradient_tolerance;
   if (run.stagnant) check.stagnation = "the step fell below the scaled step tolerance";
-  return iteration_finished(check, run.callbacks.stop, options.max_iterations, run.result);
+  return iteration_finished(check, run.callbacks.stop,
+                            options.max_iterations + run.iterations_at_escape, run.result);
 }
 
 // One iteration from the current state: KINSOL's (with the Hessian's
@@ -310,6 +318,45 @@ void NewtonSolver::Impl::finish(NewtonRun& run) {
   if (run.result.status != SolveStatus::NonFinite)
     run.result.stable = is_positive_definite(system.cholesky(), objective.hessian());
   run.result.factorizations = factorizations() - run.factorizations_at_start;
+}
+
+// At a converged state that is not stable: the escape along negative
+// curvature (saddle_escape.hpp), reported as one more iteration. True when
+// the solver left a saddle and iterates on.
+bool NewtonSolver::Impl::escape(int& iteration, NewtonRun& run) {
+  NewtonResult& result = run.result;
+  if (!options.escape.enabled || !result.converged() || result.stable ||
+      static_cast<int>(result.saddles_escaped.size()) >= options.escape.max_escapes)
+    return false;
+  const Clock::time_point escape_start = Clock::now();
+  const long factorizations_before = factorizations();
+  const Eigen::VectorXd q_saddle = objective.get();
+  const EscapeResult left = escape_saddle(objective, objective.hessian(), objective.mass(),
+                                          system.cholesky(), options.escape);
+  if (left.outcome != EscapeOutcome::Escaped) {
+    evaluator.sync();
+    return false;
+  }
+  result.saddles_escaped.push_back(left.saddle);
+  result.status = SolveStatus::IterationLimit;  // set again by the next convergence test
+  const double step_norm = (objective.get() - q_saddle).lpNorm<Eigen::Infinity>();
+  objective.rebase();
+  evaluator.sync();
+  system.prepare_hessian();
+  NewtonReport& report = run.report;
+  report.iteration = ++iteration;
+  run.iterations_at_escape = iteration;
+  report.energy = objective.energy();
+  report.gradient_measure = weighted_max_norm(objective.gradient_weights(), evaluator.gradient());
+  report.step_norm = step_norm;
+  report.factorizations = factorizations() - factorizations_before;
+  report.hessian_seconds = report.factorization_seconds = 0.0;
+  report.shifted = true;
+  report.energy_line_search = true;
+  report.seconds = seconds_since(escape_start);
+  if (run.callbacks.on_iteration) run.callbacks.on_iteration(report);
+  run.stagnant = false;
+  return true;
 }
 
 NewtonResult solve_newton(Objective& objective, const NewtonOptions& options,

@@ -25,6 +25,12 @@
 // the shifted step is an energy-descent direction. Newton can still
 // converge to saddles (e.g. from a symmetric start): every result reports
 // `stable`, true only when an unshifted LL^T of the final Hessian succeeds.
+// A converged state that is not stable is a saddle or a mechanism; by
+// default (NewtonOptions::escape) a saddle is left downhill along its
+// direction of most negative curvature and the iterations go on, until a
+// stable equilibrium (or a mechanism) is reached
+// (integrators/stability/saddle_escape.hpp); each escape counts as an
+// iteration and is recorded in SolveResult::saddles_escaped.
 #pragma once
 
 #include <atomic>
@@ -36,6 +42,7 @@
 #include "integrators/common/solve_result.hpp"
 #include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/linear_algebra/shifted_factorization.hpp"
+#include "integrators/stability/saddle_escape.hpp"
 
 namespace xshell {
 
@@ -62,7 +69,7 @@ enum class LineSearch {
 
 struct NewtonOptions {
   double gradient_tolerance = 2e-8;  // converged when max_i |w_i g_i| <= this (dimensionless)
-  int max_iterations = 100;
+  int max_iterations = 100;          // from the start, and again from each saddle left
   // Largest step taken (2-norm, in the units of the unknowns); longer
   // Newton steps are scaled down (KINSetMaxNewtonStep, and the energy line
   // search). KINSOL's default (1000 |q0|) is meaningless for unknowns that
@@ -76,6 +83,7 @@ struct NewtonOptions {
   double scaled_step_tolerance = 1e-14;
   ShiftOptions shift;  // handling of indefinite Hessians
   LineSearch line_search = LineSearch::Energy;
+  SaddleEscapeOptions escape;  // leaving converged saddles (enabled by default)
 };
 
 // One per iteration, and one for the initial state (iteration 0).

@@ -66,7 +66,7 @@ EigenModes dense_modes(const Eigen::SparseMatrix<double>& H, const Eigen::Vector
 }  // namespace
 
 EigenModes lowest_eigenmodes(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
-                             const EigenModesOptions& options) {
+                             const EigenModesOptions& options, CholeskySolver* reused) {
   const int n = static_cast<int>(H.rows());
   const int count = std::min(options.count, n);
   EigenModes out;
@@ -76,7 +76,8 @@ EigenModes lowest_eigenmodes(const Eigen::SparseMatrix<double>& H, const Eigen::
   }
   if (n <= 4 * count + 20) return dense_modes(H, mass, count);
 
-  CholeskySolver solver;
+  CholeskySolver own;
+  CholeskySolver& solver = reused ? *reused : own;
   MassWeightedShiftSolve op(H, mass, solver);
   double sigma = 0.0;
   if (!op.factorize(sigma)) {

@@ -38,8 +38,14 @@ struct EigenModes {
   double shift = 0.0;       // sigma used
 };
 
-// H: n x n symmetric (both triangles stored); mass: n, positive.
+class CholeskySolver;
+
+// H: n x n symmetric (both triangles stored); mass: n, positive. solver:
+// the CHOLMOD solver to factorize H - sigma M with (its symbolic analysis of
+// H's pattern is reused, its factorization overwritten), or nullptr for a
+// solver of its own.
 EigenModes lowest_eigenmodes(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
-                             const EigenModesOptions& options = {});
+                             const EigenModesOptions& options = {},
+                             CholeskySolver* solver = nullptr);
 
 }  // namespace xshell

@@ -30,7 +30,12 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
   if (problem.default_support_vertex() < 0) unloaded_setup.supports = problem.supports();
   LinkageProblem unloaded(problem.linkage(), unloaded_setup);
   LinkageObjective objective(unloaded);
-  const NewtonResult relaxed = solve_newton(objective, options.unloaded_newton);
+  // K_0 belongs to the unloaded equilibrium nearest the loaded state: where
+  // that is a saddle it stays one (and the buckling is UnloadedUnstable),
+  // never replaced by another equilibrium found past it.
+  NewtonOptions unloaded_newton = options.unloaded_newton;
+  unloaded_newton.escape.enabled = false;
+  const NewtonResult relaxed = solve_newton(objective, unloaded_newton);
   out.unloaded_converged = relaxed.converged();
   out.unloaded_reason = relaxed.reason;
   if (!out.unloaded_converged || unloaded.num_free() != problem.num_free()) {

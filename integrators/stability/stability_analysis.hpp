@@ -19,7 +19,7 @@ namespace xshell {
 struct StabilityOptions {
   EigenModesOptions modes;        // how many eigenpairs (default 6)
   bool buckling = true;           // also the buckling load factor (one more Newton solve)
-  NewtonOptions unloaded_newton;  // for the unloaded equilibrium
+  NewtonOptions unloaded_newton;  // for the unloaded equilibrium (its escape is never used)
 };
 
 struct StabilityAnalysis {

@@ -36,17 +36,19 @@ inline LinkageProblem cantilever_beam(int subdivisions, const Eigen::Vector3d& t
   return unit_beam(subdivisions, setup, w);
 }
 
-inline NewtonOptions tight_newton(double tolerance = 1e-9) {
+// escape: leave saddles (the default); false for tests of the saddle itself.
+inline NewtonOptions tight_newton(double tolerance = 1e-9, bool escape = true) {
   NewtonOptions n;
+  n.escape.enabled = escape;
   n.gradient_tolerance = tolerance;
   n.max_iterations = 200;
   n.line_search = LineSearch::Energy;
   return n;
 }
 
-inline NewtonResult relax(LinkageProblem& problem, double tolerance = 1e-9) {
+inline NewtonResult relax(LinkageProblem& problem, double tolerance = 1e-9, bool escape = true) {
   LinkageObjective objective(problem);
-  const NewtonResult result = solve_newton(objective, tight_newton(tolerance));
+  const NewtonResult result = solve_newton(objective, tight_newton(tolerance, escape));
   if (!result.converged()) MESSAGE(result.reason);
   return result;
 }

@@ -36,7 +36,7 @@ const json kFull = json::parse(R"({
   "loads": {"gravity": [0, 0, -9810], "forces": [{"vertex": 3, "force": [1, 2, 3]}]},
   "solver": {"method": "kinetic-damping", "gradient_tolerance": 1e-8, "max_iterations": 50,
              "mass": "fictitious", "damping": 0.5, "first_order": true, "start": "rest", "max_steps": 700,
-             "line_search": "kinsol"},
+             "line_search": "kinsol", "escape_saddles": false, "buckling_direction": [0, 0, -2]},
   "output": {"directory": "/tmp/results", "every": 5, "format": "ascii", "solids": true,
              "progress": false},
   "deployment": {"joint_angles": [{"vertex": 2, "angle": 1.5}, {"vertex": 3, "angle": 2}],
@@ -115,6 +115,8 @@ TEST_CASE("config: defaults are filled in") {
   CHECK(!c.solver.max_steps);
   CHECK(c.solver.step_limit() == 5000);
   CHECK(c.solver.line_search == LineSearchSetting::Energy);
+  CHECK(c.solver.escape_saddles);
+  CHECK(c.solver.buckling_direction == Eigen::Vector3d(0, 0, 1));
   CHECK(c.output.directory == "/runs/a/out");
   CHECK(c.output.every == 1);
   CHECK(c.output.format == OutputFormat::Binary);
@@ -160,6 +162,8 @@ TEST_CASE("config: every key is read") {
   CHECK(c.solver.start == StartSetting::Rest);
   CHECK(c.solver.line_search == LineSearchSetting::Kinsol);
   CHECK(c.solver.step_limit() == 700);
+  CHECK_FALSE(c.solver.escape_saddles);
+  CHECK(c.solver.buckling_direction == Eigen::Vector3d(0, 0, -2));
   CHECK(c.output.directory == "/tmp/results");
   CHECK(c.output.every == 5);
   CHECK(c.output.format == OutputFormat::Ascii);
@@ -208,6 +212,8 @@ TEST_CASE("config: to_json gives the resolved configuration back") {
   CHECK(minimal["linkage"] == "/runs/a/grid.obj");
   CHECK(minimal["solver"]["damping"] == "auto");
   CHECK(minimal["solver"]["start"] == "slow_manifold");
+  CHECK(minimal["solver"]["escape_saddles"] == true);
+  CHECK(minimal["solver"]["buckling_direction"] == json({0.0, 0.0, 1.0}));
   CHECK(minimal["output"]["solids"] == "auto");
   CHECK(minimal["supports"] == json::array());
   CHECK(minimal["loads"]["gravity"] == json({0.0, 0.0, 0.0}));
@@ -278,6 +284,22 @@ TEST_CASE("config: wrong types are rejected") {
                 {"solver.damping", "expected a number >= 0 or \"auto\""});
   check_message(rejection(with("/material/strength", nullptr)),
                 {"material.strength", "expected a number, got null"});
+  check_message(rejection(with("/solver", {{"escape_saddles", "yes"}})),
+                {"solver.escape_saddles", "expected true or false"});
+  check_message(rejection(with("/solver", {{"buckling_direction", {0, 1}}})),
+                {"solver.buckling_direction", "three numbers", "array of 2"});
+  check_message(rejection(with("/solver", {{"buckling_direction", {0, "up", 0}}})),
+                {"solver.buckling_direction[1]", "expected a number"});
+  check_message(rejection(with("/solver", {{"buckling_direction", "up"}})),
+                {"solver.buckling_direction", "three numbers"});
+}
+
+TEST_CASE("config: a buckling direction must not be zero") {
+  for (const json& zero : {json({0, 0, 0}), json({0.0, -0.0, 1e-320})}) {
+    CAPTURE(zero.dump());
+    check_message(rejection(with("/solver", {{"buckling_direction", zero}})),
+                  {"solver.buckling_direction", "expected a non-zero direction"});
+  }
 }
 
 TEST_CASE("config: missing required keys are rejected") {

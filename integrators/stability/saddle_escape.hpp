@@ -1,0 +1,94 @@
+// Leaving a saddle: when a solver has converged to an equilibrium whose
+// free Hessian H is not positive definite, the state is a saddle (some
+// direction lowers the energy) or a mechanism (zero modes only). A saddle
+// is information, not an answer: the solvers move off it downhill along
+// the direction of most negative curvature and iterate on, until they reach
+// a stable equilibrium (docs/model.md section 9.5).
+//
+// The direction is the lowest eigenvector of H phi = lambda M phi (M the
+// lumped masses, so that lambda does not depend on how the unknowns mix
+// lengths and angles), found by shift-invert Lanczos on a CHOLMOD
+// factorization of H - sigma M (eigen_modes.hpp), which reuses the symbolic
+// analysis of the solver's own Cholesky factorization. lambda counts as
+// negative curvature when lambda < -relative_threshold |H|_F / |m|_2 (the
+// scale of the solvers' shifts, shifted_factorization.hpp): a mechanism's
+// zero modes sit at round-off, far above that. A mode of negative curvature
+// is then also required to lower the energy beyond round-off.
+//
+// Branch choice: of the two signs of phi (the two sides a symmetric state
+// can leave by), the escape takes the one with bias . phi > 0, where bias
+// is a vector over the free unknowns chosen by the caller (for a linkage:
+// the joints' mean displacement along the buckling direction,
+// branch_bias()). When that product vanishes (a mode that moves no joint
+// along the direction), the sign makes phi's largest entry positive, so the
+// result never depends on round-off.
+//
+// The step: q = q0 + t phi (phi scaled to a largest entry of 1), t doubling
+// from 1e-3 max(1, |q0|_inf) while the energy falls (halving first while
+// the first trial does not lower it), the lowest energy of the trials kept.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "integrators/common/objective.hpp"
+#include "integrators/common/solve_result.hpp"
+#include "integrators/linear_algebra/cholesky_solver.hpp"
+
+namespace xshell {
+
+struct SaddleEscapeOptions {
+  bool enabled = true;   // false: report saddles as they are ("solver.escape_saddles")
+  int max_escapes = 10;  // escapes per solve
+  // Over the free unknowns (empty: no preference): phi is signed so that
+  // bias . phi > 0.
+  Eigen::VectorXd bias;
+  // lambda < -relative_threshold |H|_F / |m|_2 is negative curvature.
+  double relative_threshold = 1e-12;
+  // A trial lowers the energy when E < E0 - energy_noise |E0|.
+  double energy_noise = 1e-13;
+};
+
+enum class EscapeOutcome {
+  Escaped,              // moved downhill off a saddle; the objective is at the new point
+  NoNegativeCurvature,  // lambda_min above the threshold: a mechanism or a minimum
+  NoDescent,            // no trial lowered the energy beyond round-off; objective unchanged
+  NoMode,               // the eigensolver failed; objective unchanged
+};
+
+struct EscapeResult {
+  EscapeOutcome outcome = EscapeOutcome::NoMode;
+  SaddleRecord saddle;     // energy and lambda_min at the start
+  Eigen::VectorXd mode;    // phi, signed and scaled as taken (empty unless a mode was found)
+  double amplitude = 0.0;  // t of the step taken
+};
+
+// The lowest mode of H (the objective's Hessian at its current state) with
+// `solver` (its symbolic analysis reused), and when it has negative
+// curvature the step downhill along it. H: free Hessian, both triangles;
+// mass: positive, size n.
+EscapeResult escape_saddle(Objective& objective, const Eigen::SparseMatrix<double>& H,
+                           const Eigen::VectorXd& mass, CholeskySolver& solver,
+                           const SaddleEscapeOptions& options);
+
+// The two parts of escape_saddle, for solvers whose Hessian lives in other
+// coordinates than their objective (the constrained Newton's null space).
+struct NegativeMode {
+  bool found = false;     // the eigensolver converged
+  bool negative = false;  // eigenvalue below the threshold: negative curvature
+  double eigenvalue = 0.0;
+  Eigen::VectorXd vector;  // signed_direction() of the mode (bias in H's coordinates)
+};
+NegativeMode negative_mode(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
+                           CholeskySolver& solver, const SaddleEscapeOptions& options);
+// The step q0 + t d (the trials above) from the objective's state q0;
+// returns t (0: no trial lowered the energy, the objective back at q0).
+double step_downhill(Objective& objective, const Eigen::VectorXd& direction,
+                     const SaddleEscapeOptions& options);
+
+// phi signed by the branch rule above (bias . phi > 0, else largest entry
+// positive) and scaled to a largest entry of magnitude 1.
+Eigen::VectorXd signed_direction(const Eigen::VectorXd& phi, const Eigen::VectorXd& bias);
+
+}  // namespace xshell
