@@ -12,8 +12,8 @@
 #include "integrators/deployment/average_constraint.hpp"
 #include "integrators/deployment/constrained_newton.hpp"
 #include "integrators/deployment/constrained_objective.hpp"
-#include "linkage/opening_angle_range.hpp"
 #include "integrators/stability/branch_bias.hpp"
+#include "linkage/opening_angle_range.hpp"
 
 namespace xshell {
 
