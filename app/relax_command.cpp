@@ -85,8 +85,11 @@ class Outputs {
     try {
       if (series_->write(linkage_snapshot(problem_.linkage(), origin_, time), force))
         last_time_ = time;
+    } catch (const OutputError& e) {
+      error_ = e.what();  // names the file
     } catch (const std::exception& e) {
-      error_ = e.what();
+      error_ = "cannot write the VTK step " + std::to_string(series_->steps_written()) + " in '" +
+               printable(dir_.string()) + "': " + e.what();
     }
   }
 
@@ -217,14 +220,20 @@ SolverRun solve(Run& run, bool progress, const std::atomic<bool>& stop, Outputs&
   return run_solver(run.config, objective, hooks);
 }
 
+// The summary's status of a run that its own outputs stopped (extends the
+// solvers' statuses, integrators/common/solve_result.hpp).
+constexpr const char* kOutputFailed = "output_failed";
+
 // The summary's fields from what the solve found, and the final state.
-void record_result(const SolverRun& solved, bool interrupted, const FreeMotions& motions,
-                   const Run& run, RunSummary& summary) {
+// `output_error`: why the outputs stopped the run (empty if they did not).
+void record_result(const SolverRun& solved, bool interrupted, const std::string& output_error,
+                   const FreeMotions& motions, const Run& run, RunSummary& summary) {
   const SolveResult& result = solved.result;
   summary.status = to_string(result.status);
   summary.reason = result.reason;
   summary.converged = result.converged();
-  summary.stable = result.stable;
+  // Stability is a property of an equilibrium: of a converged state only.
+  if (summary.converged) summary.stable = result.stable;
   summary.iterations = result.iterations;
   summary.gradient_norm = result.gradient_measure;
   summary.simulated_time = solved.simulated_time;
@@ -232,11 +241,15 @@ void record_result(const SolverRun& solved, bool interrupted, const FreeMotions&
   if (interrupted) {
     summary.status = to_string(SolveStatus::Interrupted);
     summary.reason = "interrupted by a signal";
+  } else if (result.status == SolveStatus::Interrupted && !output_error.empty()) {
+    // The stop flag raised by a failed output, not by a signal.
+    summary.status = kOutputFailed;
+    summary.reason = "stopped: an output could not be written: " + output_error;
   } else if (!summary.converged && !motions.description.empty()) {
     summary.reason = "singular system: the supports leave rigid motions free (" +
                      motions.description + "); " + summary.reason;
   }
-  if (motions.translation) summary.stable = false;
+  if (motions.translation && summary.stable) summary.stable = false;
   for (char& c : summary.reason)  // one line, whatever a library said
     if (c == '\n' || c == '\r') c = ' ';
   summary.interrupted = interrupted;
@@ -246,17 +259,20 @@ void record_result(const SolverRun& solved, bool interrupted, const FreeMotions&
   summary.opening_angles = run.problem->opening_angles();
 }
 
-// Writes the engineering results (of a converged run), the state and the
-// summary; prints the last line. Returns the exit status.
-int finish(Run& run, const SolverRun& solved, Outputs& outputs, RunSummary& summary,
-           std::chrono::steady_clock::time_point start) {
+// Writes the engineering results (of a converged run whose outputs have not
+// failed), the state and the summary, then the fabrication data. Returns
+// the first output failure (empty: none); later outputs are still tried so
+// that the state and the summary are written whenever they can be.
+std::string write_final_outputs(Run& run, const SolverRun& solved, Outputs& outputs,
+                                RunSummary& summary, std::chrono::steady_clock::time_point start) {
   const fs::path dir = run.config.output.directory;
-  if (summary.converged && !summary.interrupted) {
+  std::string error = outputs.failed() ? outputs.error() : solved.output_error;
+  const bool complete = summary.converged && !summary.interrupted && error.empty();
+  if (complete) {
     try {
       write_engineering_results(*run.problem, run.config, run.setup.origin, dir, summary);
     } catch (const OutputError& e) {
-      std::cerr << "xshell: error: " << e.what() << "\n";
-      return kExitOutputFailed;
+      error = e.what();
     } catch (const std::exception& e) {
       std::cerr << "xshell: warning: no engineering results: " << e.what() << "\n";
     }
@@ -264,21 +280,25 @@ int finish(Run& run, const SolverRun& solved, Outputs& outputs, RunSummary& summ
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   outputs.finish(summary);
-  if (outputs.failed()) {
-    std::cerr << "xshell: error: " << outputs.error() << "\n";
-    return kExitOutputFailed;
-  }
-  if (!solved.output_error.empty()) {
-    std::cerr << "xshell: error: " << solved.output_error << "\n";
-    return kExitOutputFailed;
-  }
-  if (summary.converged && !summary.interrupted) {
+  if (error.empty() && outputs.failed()) error = outputs.error();
+  if (complete && error.empty()) {
     try {
       write_fabrication(run.problem->linkage(), fabrication_units(run.config), dir);
     } catch (const OutputError& e) {
-      std::cerr << "xshell: error: " << e.what() << "\n";
-      return kExitOutputFailed;
+      error = e.what();
     }
+  }
+  return error;
+}
+
+// Writes the outputs and prints the last line. Returns the exit status.
+int finish(Run& run, const SolverRun& solved, Outputs& outputs, RunSummary& summary,
+           std::chrono::steady_clock::time_point start) {
+  const fs::path dir = run.config.output.directory;
+  const std::string error = write_final_outputs(run, solved, outputs, summary, start);
+  if (!error.empty()) {
+    std::cerr << "xshell: error: " << error << "\n";
+    return kExitOutputFailed;
   }
   std::fprintf(stderr,
                "xshell: %s after %ld %s: %s; energy %.10e, gradient %.3e (tolerance %.1e), %s; "
@@ -287,7 +307,9 @@ int finish(Run& run, const SolverRun& solved, Outputs& outputs, RunSummary& summ
                run.config.solver.method == SolverMethod::Dynamics ? "steps" : "iterations",
                summary.reason.c_str(), summary.energy.total(), summary.gradient_norm,
                summary.gradient_tolerance,
-               summary.stable ? "stable" : "NOT stable (a saddle or a mechanism)",
+               !summary.stable   ? "stability not checked (not converged)"
+               : *summary.stable ? "stable"
+                                 : "NOT stable (a saddle or a mechanism)",
                dir.string().c_str());
   if (summary.interrupted) return kExitInterrupted;
   return summary.converged ? kExitConverged : kExitNotConverged;
@@ -310,7 +332,8 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
   RunSummary summary = start_summary(run);
   const SolverRun solved = solve(run, progress_enabled(args, run.config), stop, *outputs, summary);
   const bool interrupted = solved.result.status == SolveStatus::Interrupted && stop.load();
-  record_result(solved, interrupted, motions, run, summary);
+  const std::string output_error = outputs->failed() ? outputs->error() : solved.output_error;
+  record_result(solved, interrupted, output_error, motions, run, summary);
   return finish(run, solved, *outputs, summary, start);
 }
 
