@@ -74,7 +74,7 @@ TEST_CASE("run outcome: a full disk (file size limit) is status 4 naming the fir
   check_outputs_complete(dir / "out");
 }
 
-TEST_CASE("run outcome: an edge of 3e-12 is drawn; it is no output failure") {
+TEST_CASE("run outcome: an edge of 3e-12 is drawn, and is no output failure") {
   Scratch dir("outcome-short-edge");
   // Vertex 3 is 3e-12 above vertex 2 (the linkage is 1.4 across). Before,
   // the solids' sweep refused the edge, the run exited 4 ("rod 1: edge 2

@@ -455,4 +455,33 @@ TEST_CASE("kinetic damping: stop flag, iteration limit, invalid and non-finite s
   }
 }
 
+TEST_CASE("kinetic damping stops on stagnation below the round-off floor, and on divergence") {
+  SUBCASE("a tolerance of 1e-30: stagnation, long before the iteration limit") {
+    // Before: all 1,000,000 iterations (16,726 in 120 s on a large linkage).
+    StencilObjective chain = make_chain();
+    const Run run = run_kinetic_damping(chain, tight(1e-30));
+    INFO(run.result.reason);
+    CHECK(run.result.status == SolveStatus::IntegratorFailed);
+    CHECK(run.result.reason.rfind("stagnation: over the last 2000 iterations", 0) == 0);
+    CHECK(run.result.iterations < 100000);
+    CHECK(run.result.iterations % 2000 == 0);  // at a window's end
+    // At the floor: what a reachable tolerance converges to.
+    StencilObjective again = make_chain();
+    const Run converged = run_kinetic_damping(again, tight(1e-8));
+    REQUIRE(converged.result.converged());
+    CHECK(energy_difference(run.result.energy, converged.result.energy,
+                            converged.reports.front().energy) < 1e-8);
+  }
+  SUBCASE("a load that nothing holds: divergence within one window") {
+    Slope slope(3, 2.0);
+    const Run run = run_kinetic_damping(slope, tight());
+    INFO(run.result.reason);
+    CHECK(run.result.status == SolveStatus::Diverged);
+    CHECK(run.result.reason.rfind("diverging: over the last 2000 iterations", 0) == 0);
+    CHECK(run.result.iterations == 2000);
+    CHECK(run.result.energy < -1e3);
+    CHECK(std::isfinite(slope.energy()));
+  }
+}
+
 }  // namespace xshell::test
