@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <utility>
 
 #include "deploy_run.hpp"
 #include "engineering_outputs.hpp"
@@ -24,6 +25,7 @@
 #include "io/vtk/vtk_series.hpp"
 #include "linkage/model_error.hpp"
 #include "linkage/rigid_motions.hpp"
+#include "output_folder.hpp"
 #include "solver_runs.hpp"
 
 namespace xshell {
@@ -75,6 +77,7 @@ class Outputs {
     const long edges = static_cast<long>(problem.linkage().num_segments()) * config.subdivisions;
     options.solids = config.output.solids == Toggle::On ||
                      (config.output.solids == Toggle::Auto && edges <= 20000);
+    options.max_steps = max_steps_ = config.output.max_steps;
     series_.emplace(dir, options);
   }
 
@@ -85,6 +88,12 @@ class Outputs {
     try {
       if (series_->write(linkage_snapshot(problem_.linkage(), origin_, time), force))
         last_time_ = time;
+      if (series_->thinnings() > warned_thinnings_) {  // once per thinning: a few lines at most
+        warned_thinnings_ = series_->thinnings();
+        std::cerr << "xshell: warning: the VTK series reached its " << max_steps_
+                  << " steps (output.max_steps): every other step removed, 1 in "
+                  << series_->every() << " written from now on\n";
+      }
     } catch (const OutputError& e) {
       error_ = e.what();  // names the file
     } catch (const std::exception& e) {
@@ -112,6 +121,8 @@ class Outputs {
   Eigen::Vector3d origin_;
   std::optional<VtkSeries> series_;
   double last_time_ = -1.0;
+  int max_steps_ = 0;  // output.max_steps
+  int warned_thinnings_ = 0;
   std::string error_;
 };
 
@@ -139,6 +150,15 @@ int load(const RelaxArguments& args, Run& run) {
     if (args.solver) config.solver.method = parse_method(*args.solver);
     if (args.out) config.output.directory = fs::absolute(*args.out).string();
     check_available(config);
+    // No input may be a file the run writes into its folder.
+    const fs::path out = config.output.directory;
+    for (const auto& [path, what] :
+         {std::pair<std::string, std::string>{args.config, "the configuration"},
+          {config.linkage, "the linkage"},
+          {args.init.value_or(""), "the --init state"}})
+      if (!path.empty())
+        if (const std::string collision = input_collision(path, what, out); !collision.empty())
+          throw InputError(collision);
     const LineGraph graph = read_obj(config.linkage);
     run.setup = make_problem_setup(config, graph);
     RodLinkage linkage(run.setup.graph, run.setup.options);
@@ -321,7 +341,16 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
   const auto start = std::chrono::steady_clock::now();
   Run run;
   if (const int status = load(args, run); status != 0) return status;
+  // One writer per folder, and none of an earlier run's files left behind.
+  std::optional<OutputFolderLock> lock;
   std::optional<Outputs> outputs;
+  try {
+    lock.emplace(run.config.output.directory);
+    remove_stale_outputs(run.config.output.directory);
+  } catch (const OutputError& e) {
+    std::cerr << "xshell: error: " << e.what() << "\n";
+    return kExitOutputFailed;
+  }
   try {
     outputs.emplace(run.config.output.directory, run.config, *run.problem, run.setup.origin);
   } catch (const std::exception& e) {
