@@ -56,6 +56,10 @@ int main(int argc, char** argv) {
       ->check(kNonEmptyPath);
   relax_cmd->add_option("--init", relax.init, "Start from a state.json written by an earlier run")
       ->check(kNonEmptyPath);
+  relax_cmd
+      ->add_option("--grace", relax.grace,
+                   "Seconds an iteration may go on after SIGINT/SIGTERM (default 10)")
+      ->check(CLI::Range(0.0, 86400.0));
   relax_cmd->add_flag("--quiet", relax.quiet, "No progress lines");
   relax_cmd->add_flag("--verbose", relax.verbose,
                       "Progress lines even when stderr is not a terminal");

@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <mutex>
+#include <thread>
 #include <utility>
 
 #include "deploy_run.hpp"
@@ -68,8 +71,8 @@ const char* method_name(SolverMethod m) {
 class Outputs {
  public:
   Outputs(const fs::path& dir, const Config& config, const LinkageProblem& problem,
-          const Eigen::Vector3d& origin)
-      : dir_(dir), problem_(problem), origin_(origin) {
+          const Eigen::Vector3d& origin, StaticsSetup statics)
+      : dir_(dir), problem_(problem), origin_(origin), statics_(std::move(statics)) {
     SeriesOptions options;
     options.every = config.output.every;
     options.format =
@@ -86,8 +89,11 @@ class Outputs {
     if (failed() || (!force && time == last_time_)) return;
     if (force && time == last_time_) return;  // already written
     try {
-      if (series_->write(linkage_snapshot(problem_.linkage(), origin_, time), force))
+      if (series_->write(linkage_snapshot(problem_.linkage(), origin_, time), force)) {
         last_time_ = time;
+        const std::lock_guard<std::mutex> lock(last_written_mutex_);
+        last_written_.emplace(problem_.linkage());  // for save_last_written()
+      }
       if (series_->thinnings() > warned_thinnings_) {  // once per thinning: a few lines at most
         warned_thinnings_ = series_->thinnings();
         std::cerr << "xshell: warning: the VTK series reached its " << max_steps_
@@ -112,6 +118,31 @@ class Outputs {
     }
   }
 
+  // From another thread, while the solver still runs (a signal's grace
+  // period is over): writes the state of the last written VTK step and a
+  // summary `started` completed as interrupted, `reason` its reason.
+  // Returns false when no step was written yet.
+  bool save_last_written(RunSummary started, const std::string& reason) {
+    const std::lock_guard<std::mutex> lock(last_written_mutex_);
+    if (!last_written_) return false;
+    started.status = to_string(SolveStatus::Interrupted);
+    started.reason = reason;
+    started.interrupted = true;
+    try {
+      const LinkageProblem problem(*last_written_, statics_);
+      started.energy = problem.energy();
+      started.vertices = problem.vertex_positions();
+      for (auto& v : started.vertices) v += origin_;
+      started.opening_angles = problem.opening_angles();
+      write_state((dir_ / "state.json").string(), *last_written_, origin_);
+      write_summary((dir_ / "summary.json").string(), started);
+    } catch (const std::exception& e) {
+      std::cerr << "xshell: error: " << e.what() << "\n";
+      return false;
+    }
+    return true;
+  }
+
   bool failed() const { return !error_.empty(); }
   const std::string& error() const { return error_; }
 
@@ -122,6 +153,9 @@ class Outputs {
   std::optional<VtkSeries> series_;
   double last_time_ = -1.0;
   int max_steps_ = 0;  // output.max_steps
+  std::mutex last_written_mutex_;
+  std::optional<RodLinkage> last_written_;  // the linkage at the last written step
+  StaticsSetup statics_;                    // its supports and loads
   int warned_thinnings_ = 0;
   std::string error_;
 };
@@ -335,6 +369,32 @@ int finish(Run& run, const SolverRun& solved, Outputs& outputs, RunSummary& summ
   return summary.converged ? kExitConverged : kExitNotConverged;
 }
 
+// Runs beside the solve until `solved`: once `stop` has been raised for
+// `grace` seconds without the solve returning (one iteration of a large
+// linkage can take minutes), saves the last written step's state and a
+// summary, and ends the program with status 130 at once.
+void watch_grace(double grace, const std::atomic<bool>& stop, const std::atomic<bool>& solved,
+                 RunSummary started, Outputs& outputs) {
+  using Clock = std::chrono::steady_clock;
+  std::optional<Clock::time_point> raised;
+  while (!solved.load()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (!stop.load()) continue;
+    if (!raised) raised = Clock::now();
+    if (std::chrono::duration<double>(Clock::now() - *raised).count() < grace) continue;
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%g", grace);
+    const std::string reason = std::string("interrupted by a signal: the iteration in progress ") +
+                               "did not end within the grace period (" + seconds +
+                               " s); the state is that of the last written VTK step";
+    const bool saved = outputs.save_last_written(std::move(started), reason);
+    std::fprintf(stderr, "xshell: interrupted: %s%s\n", reason.c_str(),
+                 saved ? "" : " (none was written: no state saved)");
+    std::fflush(stderr);
+    std::_Exit(kExitInterrupted);  // the folder's lock goes with the process
+  }
+}
+
 }  // namespace
 
 int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
@@ -352,14 +412,20 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
     return kExitOutputFailed;
   }
   try {
-    outputs.emplace(run.config.output.directory, run.config, *run.problem, run.setup.origin);
+    outputs.emplace(run.config.output.directory, run.config, *run.problem, run.setup.origin,
+                    run.setup.statics);
   } catch (const std::exception& e) {
     std::cerr << "xshell: error: cannot write the output directory: " << e.what() << "\n";
     return kExitOutputFailed;
   }
   const FreeMotions motions = check_supports(run);
   RunSummary summary = start_summary(run);
+  std::atomic<bool> solved_flag{false};
+  std::thread watchdog(watch_grace, args.grace, std::cref(stop), std::cref(solved_flag),
+                       start_summary(run), std::ref(*outputs));
   const SolverRun solved = solve(run, progress_enabled(args, run.config), stop, *outputs, summary);
+  solved_flag = true;
+  watchdog.join();
   const bool interrupted = solved.result.status == SolveStatus::Interrupted && stop.load();
   const std::string output_error = outputs->failed() ? outputs->error() : solved.output_error;
   record_result(solved, interrupted, output_error, motions, run, summary);
