@@ -36,10 +36,17 @@ Progress ProgressWatch::observe(double energy, double gradient_measure, double k
   const double fall = window_energy_ - energy;
   const double scale = std::max(std::abs(energy), std::abs(start_energy_ - energy));
   const std::string window = "over the last " + std::to_string(options_.window) + " " + unit_;
+  const std::string windows =
+      "over the last " + std::to_string(options_.window * std::max(options_.stagnant_windows, 1)) +
+      " " + unit_;
   const bool fell = fall > options_.energy_round_off * scale;  // beyond round-off
   const bool accelerating = previous_fall_ > 0.0 && fall >= 2.0 * previous_fall_;
+  // A slow mode may take longer than a window to reach its kinetic-energy
+  // peak: divergence also needs a fall beyond the energy's whole scale so far.
+  const bool far =
+      fall > std::max(std::abs(window_energy_), std::abs(start_energy_ - window_energy_));
   Progress verdict = Progress::Continuing;
-  if (!halved && fell && (kinetic_rising_ || accelerating)) {
+  if (options_.divergence && !halved && fell && far && (kinetic_rising_ || accelerating)) {
     verdict = Progress::Diverging;
     reason_ = "diverging: " + window + " " +
               (kinetic_rising_ ? "the kinetic energy rose throughout (to " +
@@ -49,14 +56,15 @@ Progress ProgressWatch::observe(double energy, double gradient_measure, double k
               ") while the gradient measure did not halve (smallest " +
               scientific(best_in_window_) +
               "): no equilibrium within reach (loads too large, or rigid motions free?)";
-  } else if (!halved && !fell) {
+  } else if (!halved && !fell && ++stagnant_in_a_row_ >= options_.stagnant_windows) {
     verdict = Progress::Stagnating;
-    reason_ = "stagnation: " + window + " the gradient measure did not halve (smallest " +
+    reason_ = "stagnation: " + windows + " the gradient measure did not halve (smallest " +
               scientific(best_in_window_) +
               ") and the energy did not fall beyond round-off (from " + scientific(window_energy_) +
               " to " + scientific(energy) +
               "): round-off floor above the tolerance, or no way down?";
   }
+  if (halved || fell) stagnant_in_a_row_ = 0;
   best_before_ = std::min(best_before_, best_in_window_);
   previous_fall_ = fall;
   start_window(energy, kinetic_energy);

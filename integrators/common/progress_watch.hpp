@@ -7,9 +7,11 @@
 // Over each window of `window` iterations, when the smallest g of the window
 // is not below half the smallest g before it (no progress towards the
 // tolerance), the solve is
-//   - diverging when, besides, E fell beyond round-off (below) and either K rose at every iteration
-//     of the window or E fell at least twice as far as in the window
-//     before: the motion only speeds up, downhill, away from any
+//   - diverging when, besides, E fell by more than its whole scale so far
+//     (max(|E|, |E_0 - E|) at the window's start: a slow mode can take more
+//     than a window to reach its kinetic-energy peak, but falls less) and
+//     either K rose at every iteration of the window or E fell at least
+//     twice as far as in the window before: the motion only speeds up, downhill, away from any
 //     equilibrium (a load no support can hold, or one too large for the
 //     linkage), where a converging motion slows down;
 //   - stagnating when, besides, E did not fall by more than
@@ -27,6 +29,12 @@ namespace xshell {
 struct ProgressWatchOptions {
   long window = 2000;               // iterations (or time steps) per window, >= 1
   double energy_round_off = 1e-12;  // relative fall of E below which E did not fall
+  // Stagnation only after this many windows in a row without progress (a
+  // run near its tolerance may halve g slowly while E stays at round-off).
+  int stagnant_windows = 1;
+  // Whether to judge divergence (kinetic damping: no; a slow mode from a
+  // stress-free start rises through a whole window on real linkages).
+  bool divergence = true;
 };
 
 enum class Progress { Continuing, Diverging, Stagnating };
@@ -61,6 +69,7 @@ class ProgressWatch {
   bool kinetic_rising_ = true;  // K rose at every iteration of the window
   double previous_fall_ = 0.0;  // how far E fell in the window before
   long in_window_ = 0;
+  int stagnant_in_a_row_ = 0;
 };
 
 }  // namespace xshell

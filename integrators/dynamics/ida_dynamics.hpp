@@ -132,7 +132,7 @@ struct DynamicsStoppingOptions {
   long max_steps = 100000;
   // Stops a run that diverges or stagnates (no progress beyond round-off)
   // over a window of steps: Diverged or IntegratorFailed.
-  ProgressWatchOptions progress = {1000, 1e-12};
+  ProgressWatchOptions progress = {1000, 1e-12, 1};
 };
 
 // Rebases (objective.rebase: source-frame updates, omega folds); each restarts IDA at order 1.

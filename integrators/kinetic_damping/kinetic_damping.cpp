@@ -112,7 +112,7 @@ KineticDampingRun::KineticDampingRun(Objective& target, const KineticDampingOpti
   energy0 = energy;
   report.energy = energy;
   report.gradient_measure = weighted_max_norm(weights, gradient);
-  watch.emplace(energy, report.gradient_measure, options.progress);
+  if (options.progress.window > 0) watch.emplace(energy, report.gradient_measure, options.progress);
   velocity = Eigen::VectorXd::Zero(q.size());
   energy_at_reset = energy;
   safety = options.mass_safety;
@@ -168,7 +168,9 @@ bool KineticDampingRun::iterate() {
     finish(SolveStatus::Converged, "gradient and kinetic energy below tolerance");
     return false;
   }
-  const Progress progress = watch->observe(energy, report.gradient_measure, report.kinetic_energy);
+  const Progress progress =
+      watch ? watch->observe(energy, report.gradient_measure, report.kinetic_energy)
+            : Progress::Continuing;
   if (progress != Progress::Continuing) {
     finish(progress == Progress::Diverging ? SolveStatus::Diverged : SolveStatus::IntegratorFailed,
            watch->reason());
