@@ -13,6 +13,7 @@
 #include "io/problem_setup.hpp"
 #include "io/state_file.hpp"
 #include "linkage/model_error.hpp"
+#include "output_folder.hpp"
 
 namespace xshell {
 
@@ -48,6 +49,7 @@ int run_fabricate(const FabricateArguments& args) {
     return kExitOutputFailed;
   }
   try {
+    const OutputFolderLock lock(dir);  // not while a run writes there
     write_fabrication(*linkage, fabrication_units(config), dir);
   } catch (const OutputError& e) {
     std::cerr << "xshell: error: " << e.what() << "\n";

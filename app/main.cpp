@@ -28,6 +28,15 @@ int usage_error(const std::string& what, const std::string& command) {
             << (command.empty() ? "" : command + " ") << "--help)\n";
   return xshell::kExitInvalidInput;
 }
+
+// File and folder names may not be empty (before, `--out ""` ended in an
+// internal error): a usage error, like the configuration's empty names.
+const CLI::Validator kNonEmptyPath(
+    [](std::string& value) {
+      return value.empty() ? std::string("must name a file or folder, got an empty string")
+                           : std::string();
+    },
+    "PATH", "non-empty path");
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -38,11 +47,19 @@ int main(int argc, char** argv) {
 
   RelaxArguments relax;
   CLI::App* relax_cmd = app.add_subcommand("relax", "Find the static equilibrium of a linkage");
-  relax_cmd->add_option("config", relax.config, "Configuration (JSON)")->required();
+  relax_cmd->add_option("config", relax.config, "Configuration (JSON)")
+      ->required()
+      ->check(kNonEmptyPath);
   relax_cmd->add_option("--solver", relax.solver,
                         "newton | dynamics | kinetic-damping (overrides solver.method)");
-  relax_cmd->add_option("--out", relax.out, "Output directory (overrides output.directory)");
-  relax_cmd->add_option("--init", relax.init, "Start from a state.json written by an earlier run");
+  relax_cmd->add_option("--out", relax.out, "Output directory (overrides output.directory)")
+      ->check(kNonEmptyPath);
+  relax_cmd->add_option("--init", relax.init, "Start from a state.json written by an earlier run")
+      ->check(kNonEmptyPath);
+  relax_cmd
+      ->add_option("--grace", relax.grace,
+                   "Seconds an iteration may go on after SIGINT/SIGTERM (default 10)")
+      ->check(CLI::Range(0.0, 86400.0));
   relax_cmd->add_flag("--quiet", relax.quiet, "No progress lines");
   relax_cmd->add_flag("--verbose", relax.verbose,
                       "Progress lines even when stderr is not a terminal");
@@ -52,7 +69,9 @@ int main(int argc, char** argv) {
       app.add_subcommand("render", "Render a run's final state (or .vtp files) to a PNG");
   render_cmd->add_option("inputs", render.inputs, "An output directory of `relax`, or .vtp files")
       ->required();
-  render_cmd->add_option("--out", render.png, "PNG file to write")->required();
+  render_cmd->add_option("--out", render.png, "PNG file to write")
+      ->required()
+      ->check(kNonEmptyPath);
   render_cmd->add_option("--width", render.width, "Picture width in pixels");
   render_cmd->add_option("--height", render.height, "Picture height in pixels");
   render_cmd->add_option("--color", render.color, "Point or cell array to colour by");
@@ -60,11 +79,15 @@ int main(int argc, char** argv) {
   FabricateArguments fabricate;
   CLI::App* fabricate_cmd = app.add_subcommand(
       "fabricate", "Write the fabrication data (cut lengths, drill stations) without solving");
-  fabricate_cmd->add_option("config", fabricate.config, "Configuration (JSON)")->required();
-  fabricate_cmd->add_option("--init", fabricate.init,
-                            "Take the state from a state.json written by an earlier run");
-  fabricate_cmd->add_option("--out", fabricate.out,
-                            "Output directory (overrides output.directory)");
+  fabricate_cmd->add_option("config", fabricate.config, "Configuration (JSON)")
+      ->required()
+      ->check(kNonEmptyPath);
+  fabricate_cmd
+      ->add_option("--init", fabricate.init,
+                   "Take the state from a state.json written by an earlier run")
+      ->check(kNonEmptyPath);
+  fabricate_cmd->add_option("--out", fabricate.out, "Output directory (overrides output.directory)")
+      ->check(kNonEmptyPath);
 
   // The command first: CLI11 would only say that one is required.
   const std::string commands = "the commands are relax, render and fabricate";
@@ -79,9 +102,10 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    const std::string command = relax_cmd->parsed()    ? "relax"
-                                : render_cmd->parsed() ? "render"
-                                                       : "";
+    const std::string command = relax_cmd->parsed()       ? "relax"
+                                : render_cmd->parsed()    ? "render"
+                                : fabricate_cmd->parsed() ? "fabricate"
+                                                          : "";
     return usage_error(e.what(), command);
   }
   // The commands report every foreseen failure themselves; this is the last

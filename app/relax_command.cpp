@@ -5,8 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <mutex>
+#include <thread>
+#include <utility>
 
 #include "deploy_run.hpp"
 #include "engineering_outputs.hpp"
@@ -26,6 +30,7 @@
 #include "linkage/model_error.hpp"
 #include "linkage/opening_angle_range.hpp"
 #include "linkage/rigid_motions.hpp"
+#include "output_folder.hpp"
 #include "run_warnings.hpp"
 #include "solver_runs.hpp"
 
@@ -75,8 +80,8 @@ const char* method_name(SolverMethod m) {
 class Outputs {
  public:
   Outputs(const fs::path& dir, const Config& config, const LinkageProblem& problem,
-          const Eigen::Vector3d& origin)
-      : dir_(dir), problem_(problem), origin_(origin) {
+          const Eigen::Vector3d& origin, StaticsSetup statics)
+      : dir_(dir), problem_(problem), origin_(origin), statics_(std::move(statics)) {
     SeriesOptions options;
     options.every = config.output.every;
     options.format =
@@ -84,6 +89,7 @@ class Outputs {
     const long edges = static_cast<long>(problem.linkage().num_segments()) * config.subdivisions;
     options.solids = config.output.solids == Toggle::On ||
                      (config.output.solids == Toggle::Auto && edges <= 20000);
+    options.max_steps = max_steps_ = config.output.max_steps;
     series_.emplace(dir, options);
   }
 
@@ -92,10 +98,22 @@ class Outputs {
     if (failed() || (!force && time == last_time_)) return;
     if (force && time == last_time_) return;  // already written
     try {
-      if (series_->write(linkage_snapshot(problem_.linkage(), origin_, time), force))
+      if (series_->write(linkage_snapshot(problem_.linkage(), origin_, time), force)) {
         last_time_ = time;
+        const std::lock_guard<std::mutex> lock(last_written_mutex_);
+        last_written_.emplace(problem_.linkage());  // for save_last_written()
+      }
+      if (series_->thinnings() > warned_thinnings_) {  // once per thinning: a few lines at most
+        warned_thinnings_ = series_->thinnings();
+        std::cerr << "xshell: warning: the VTK series reached its " << max_steps_
+                  << " steps (output.max_steps): every other step removed, 1 in "
+                  << series_->every() << " written from now on\n";
+      }
+    } catch (const OutputError& e) {
+      error_ = e.what();  // names the file
     } catch (const std::exception& e) {
-      error_ = e.what();
+      error_ = "cannot write the VTK step " + std::to_string(series_->steps_written()) + " in '" +
+               printable(dir_.string()) + "': " + e.what();
     }
   }
 
@@ -109,6 +127,31 @@ class Outputs {
     }
   }
 
+  // From another thread, while the solver still runs (a signal's grace
+  // period is over): writes the state of the last written VTK step and a
+  // summary `started` completed as interrupted, `reason` its reason.
+  // Returns false when no step was written yet.
+  bool save_last_written(RunSummary started, const std::string& reason) {
+    const std::lock_guard<std::mutex> lock(last_written_mutex_);
+    if (!last_written_) return false;
+    started.status = to_string(SolveStatus::Interrupted);
+    started.reason = reason;
+    started.interrupted = true;
+    try {
+      const LinkageProblem problem(*last_written_, statics_);
+      started.energy = problem.energy();
+      started.vertices = problem.vertex_positions();
+      for (auto& v : started.vertices) v += origin_;
+      started.opening_angles = problem.opening_angles();
+      write_state((dir_ / "state.json").string(), *last_written_, origin_);
+      write_summary((dir_ / "summary.json").string(), started);
+    } catch (const std::exception& e) {
+      std::cerr << "xshell: error: " << e.what() << "\n";
+      return false;
+    }
+    return true;
+  }
+
   bool failed() const { return !error_.empty(); }
   const std::string& error() const { return error_; }
 
@@ -118,6 +161,11 @@ class Outputs {
   Eigen::Vector3d origin_;
   std::optional<VtkSeries> series_;
   double last_time_ = -1.0;
+  int max_steps_ = 0;  // output.max_steps
+  std::mutex last_written_mutex_;
+  std::optional<RodLinkage> last_written_;  // the linkage at the last written step
+  StaticsSetup statics_;                    // its supports and loads
+  int warned_thinnings_ = 0;
   std::string error_;
 };
 
@@ -153,6 +201,15 @@ int load(const RelaxArguments& args, Run& run) {
     if (args.solver) config.solver.method = parse_method(*args.solver);
     if (args.out) config.output.directory = fs::absolute(*args.out).string();
     check_available(config);
+    // No input may be a file the run writes into its folder.
+    const fs::path out = config.output.directory;
+    for (const auto& [path, what] :
+         {std::pair<std::string, std::string>{args.config, "the configuration"},
+          {config.linkage, "the linkage"},
+          {args.init.value_or(""), "the --init state"}})
+      if (!path.empty())
+        if (const std::string collision = input_collision(path, what, out); !collision.empty())
+          throw InputError(collision);
     const LineGraph graph = read_obj(config.linkage);
     run.setup = make_problem_setup(config, graph);
     RodLinkage linkage(run.setup.graph, run.setup.options);
@@ -258,14 +315,20 @@ void record_opening_range(Run& run, RunSummary& summary) {
   summary.warnings.push_back(run.warnings.back());
 }
 
+// The summary's status of a run that its own outputs stopped (extends the
+// solvers' statuses, integrators/common/solve_result.hpp).
+constexpr const char* kOutputFailed = "output_failed";
+
 // The summary's fields from what the solve found, and the final state.
-void record_result(const SolverRun& solved, bool interrupted, const FreeMotions& motions, Run& run,
-                   RunSummary& summary) {
+// `output_error`: why the outputs stopped the run (empty if they did not).
+void record_result(const SolverRun& solved, bool interrupted, const std::string& output_error,
+                   const FreeMotions& motions, Run& run, RunSummary& summary) {
   const SolveResult& result = solved.result;
   summary.status = to_string(result.status);
   summary.reason = result.reason;
   summary.converged = result.converged();
-  summary.stable = result.stable;
+  // Stability is a property of an equilibrium: of a converged state only.
+  if (summary.converged) summary.stable = result.stable;
   summary.iterations = result.iterations;
   summary.gradient_norm = result.gradient_measure;
   summary.simulated_time = solved.simulated_time;
@@ -277,6 +340,10 @@ void record_result(const SolverRun& solved, bool interrupted, const FreeMotions&
   if (interrupted) {
     summary.status = to_string(SolveStatus::Interrupted);
     summary.reason = "interrupted by a signal";
+  } else if (result.status == SolveStatus::Interrupted && !output_error.empty()) {
+    // The stop flag raised by a failed output, not by a signal.
+    summary.status = kOutputFailed;
+    summary.reason = "stopped: an output could not be written: " + output_error;
   } else if (!summary.converged && !motions.description.empty()) {
     summary.reason = "singular system: the supports leave rigid motions free (" +
                      motions.description + "); " + summary.reason;
@@ -285,7 +352,7 @@ void record_result(const SolverRun& solved, bool interrupted, const FreeMotions&
     // cause: name them before what the solver saw.
     summary.reason = far_supports_reason(run.far_supports) + summary.reason;
   }
-  if (motions.translation) summary.stable = false;
+  if (motions.translation && summary.stable) summary.stable = false;
   for (char& c : summary.reason)  // one line, whatever a library said
     if (c == '\n' || c == '\r') c = ' ';
   summary.interrupted = interrupted;
@@ -296,17 +363,20 @@ void record_result(const SolverRun& solved, bool interrupted, const FreeMotions&
   record_opening_range(run, summary);
 }
 
-// Writes the engineering results (of a converged run), the state and the
-// summary; prints the last line. Returns the exit status.
-int finish(Run& run, const SolverRun& solved, Outputs& outputs, RunSummary& summary,
-           std::chrono::steady_clock::time_point start) {
+// Writes the engineering results (of a converged run whose outputs have not
+// failed), the state and the summary, then the fabrication data. Returns
+// the first output failure (empty: none); later outputs are still tried so
+// that the state and the summary are written whenever they can be.
+std::string write_final_outputs(Run& run, const SolverRun& solved, Outputs& outputs,
+                                RunSummary& summary, std::chrono::steady_clock::time_point start) {
   const fs::path dir = run.config.output.directory;
-  if (summary.converged && !summary.interrupted) {
+  std::string error = outputs.failed() ? outputs.error() : solved.output_error;
+  const bool complete = summary.converged && !summary.interrupted && error.empty();
+  if (complete) {
     try {
       write_engineering_results(*run.problem, run.config, run.setup.origin, dir, summary);
     } catch (const OutputError& e) {
-      std::cerr << "xshell: error: " << e.what() << "\n";
-      return kExitOutputFailed;
+      error = e.what();
     } catch (const std::exception& e) {
       warn(run, std::string("no engineering results: ") + e.what());
       summary.warnings.push_back(run.warnings.back());
@@ -315,21 +385,25 @@ int finish(Run& run, const SolverRun& solved, Outputs& outputs, RunSummary& summ
   summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   outputs.finish(summary);
-  if (outputs.failed()) {
-    std::cerr << "xshell: error: " << outputs.error() << "\n";
-    return kExitOutputFailed;
-  }
-  if (!solved.output_error.empty()) {
-    std::cerr << "xshell: error: " << solved.output_error << "\n";
-    return kExitOutputFailed;
-  }
-  if (summary.converged && !summary.interrupted) {
+  if (error.empty() && outputs.failed()) error = outputs.error();
+  if (complete && error.empty()) {
     try {
       write_fabrication(run.problem->linkage(), fabrication_units(run.config), dir);
     } catch (const OutputError& e) {
-      std::cerr << "xshell: error: " << e.what() << "\n";
-      return kExitOutputFailed;
+      error = e.what();
     }
+  }
+  return error;
+}
+
+// Writes the outputs and prints the last line. Returns the exit status.
+int finish(Run& run, const SolverRun& solved, Outputs& outputs, RunSummary& summary,
+           std::chrono::steady_clock::time_point start) {
+  const fs::path dir = run.config.output.directory;
+  const std::string error = write_final_outputs(run, solved, outputs, summary, start);
+  if (!error.empty()) {
+    std::cerr << "xshell: error: " << error << "\n";
+    return kExitOutputFailed;
   }
   std::fprintf(stderr,
                "xshell: %s after %ld %s: %s; energy %.10e, gradient %.3e (tolerance %.1e), %s; "
@@ -338,10 +412,38 @@ int finish(Run& run, const SolverRun& solved, Outputs& outputs, RunSummary& summ
                run.config.solver.method == SolverMethod::Dynamics ? "steps" : "iterations",
                summary.reason.c_str(), summary.energy.total(), summary.gradient_norm,
                summary.gradient_tolerance,
-               summary.stable ? "stable" : "NOT stable (a saddle or a mechanism)",
+               !summary.stable   ? "stability not checked (not converged)"
+               : *summary.stable ? "stable"
+                                 : "NOT stable (a saddle or a mechanism)",
                dir.string().c_str());
   if (summary.interrupted) return kExitInterrupted;
   return summary.converged ? kExitConverged : kExitNotConverged;
+}
+
+// Runs beside the solve until `solved`: once `stop` has been raised for
+// `grace` seconds without the solve returning (one iteration of a large
+// linkage can take minutes), saves the last written step's state and a
+// summary, and ends the program with status 130 at once.
+void watch_grace(double grace, const std::atomic<bool>& stop, const std::atomic<bool>& solved,
+                 RunSummary started, Outputs& outputs) {
+  using Clock = std::chrono::steady_clock;
+  std::optional<Clock::time_point> raised;
+  while (!solved.load()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (!stop.load()) continue;
+    if (!raised) raised = Clock::now();
+    if (std::chrono::duration<double>(Clock::now() - *raised).count() < grace) continue;
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%g", grace);
+    const std::string reason = std::string("interrupted by a signal: the iteration in progress ") +
+                               "did not end within the grace period (" + seconds +
+                               " s); the state is that of the last written VTK step";
+    const bool saved = outputs.save_last_written(std::move(started), reason);
+    std::fprintf(stderr, "xshell: interrupted: %s%s\n", reason.c_str(),
+                 saved ? "" : " (none was written: no state saved)");
+    std::fflush(stderr);
+    std::_Exit(kExitInterrupted);  // the folder's lock goes with the process
+  }
 }
 
 }  // namespace
@@ -350,18 +452,34 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
   const auto start = std::chrono::steady_clock::now();
   Run run;
   if (const int status = load(args, run); status != 0) return status;
+  // One writer per folder, and none of an earlier run's files left behind.
+  std::optional<OutputFolderLock> lock;
   std::optional<Outputs> outputs;
   try {
-    outputs.emplace(run.config.output.directory, run.config, *run.problem, run.setup.origin);
+    lock.emplace(run.config.output.directory);
+    remove_stale_outputs(run.config.output.directory);
+  } catch (const OutputError& e) {
+    std::cerr << "xshell: error: " << e.what() << "\n";
+    return kExitOutputFailed;
+  }
+  try {
+    outputs.emplace(run.config.output.directory, run.config, *run.problem, run.setup.origin,
+                    run.setup.statics);
   } catch (const std::exception& e) {
     std::cerr << "xshell: error: cannot write the output directory: " << e.what() << "\n";
     return kExitOutputFailed;
   }
   const FreeMotions motions = check_supports(args, run);
   RunSummary summary = start_summary(run);
+  std::atomic<bool> solved_flag{false};
+  std::thread watchdog(watch_grace, args.grace, std::cref(stop), std::cref(solved_flag),
+                       start_summary(run), std::ref(*outputs));
   const SolverRun solved = solve(run, progress_enabled(args, run.config), stop, *outputs, summary);
+  solved_flag = true;
+  watchdog.join();
   const bool interrupted = solved.result.status == SolveStatus::Interrupted && stop.load();
-  record_result(solved, interrupted, motions, run, summary);
+  const std::string output_error = outputs->failed() ? outputs->error() : solved.output_error;
+  record_result(solved, interrupted, output_error, motions, run, summary);
   return finish(run, solved, *outputs, summary, start);
 }
 

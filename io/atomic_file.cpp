@@ -37,9 +37,14 @@ class TemporaryFile {
   void write(std::string_view bytes) {
     std::ofstream out(path_, std::ios::binary | std::ios::trunc);
     if (!out) throw OutputError(target_, std::strerror(errno));
+    errno = 0;
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     out.close();
-    if (!out) throw OutputError(target_, "write to temporary file '" + path_.string() + "' failed");
+    // The system's reason when it gave one (a full disk: "No space left on
+    // device"; a file size limit: "File too large").
+    if (!out)
+      throw OutputError(target_, "write to temporary file '" + path_.string() + "' failed" +
+                                     (errno != 0 ? std::string(": ") + std::strerror(errno) : ""));
   }
 
   void commit() {

@@ -303,9 +303,13 @@ OutputOptions read_output(const JsonField* f, const std::string& base_dir) {
   OutputOptions o;
   o.directory = resolve("out", base_dir);
   if (!f) return o;
-  f->check_keys({"directory", "every", "format", "solids", "progress"});
+  f->check_keys({"directory", "every", "max_steps", "format", "solids", "progress"});
   if (auto dir = f->find("directory")) o.directory = file_path(*dir, base_dir);
   if (auto every = f->find("every")) o.every = at_least(*every, 1);
+  if (auto max_steps = f->find("max_steps")) {
+    o.max_steps = at_least(*max_steps, 0);
+    if (o.max_steps == 1) max_steps->fail("must be 0 (no limit) or at least 2, got 1");
+  }
   if (auto format = f->find("format")) o.format = format->choice(kFormats);
   if (auto solids = f->find("solids")) o.solids = toggle(*solids);
   if (auto progress = f->find("progress")) o.progress = toggle(*progress);
@@ -500,6 +504,7 @@ nlohmann::json to_json(const Config& c) {
       {"output",
        {{"directory", c.output.directory},
         {"every", c.output.every},
+        {"max_steps", c.output.max_steps},
         {"format", name_of(c.output.format, kFormats)},
         {"solids", toggle_json(c.output.solids)},
         {"progress", toggle_json(c.output.progress)}}}};

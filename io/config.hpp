@@ -217,6 +217,8 @@ struct OutputOptions {
   std::string directory;  // "directory", default "out"; relative to the configuration
                           // file's folder, stored resolved
   int every = 1;          // "every", >= 1, default 1: write every n-th iteration or step
+  int max_steps = 1000;   // "max_steps", 0 (no limit) or >= 2, default 1000: VTK steps kept;
+                          // beyond, every other is removed and `every` doubles
   OutputFormat format = OutputFormat::Binary;  // "format", default "binary"
   Toggle solids = Toggle::Auto;    // "solids", default "auto": also write the rods as solids
   Toggle progress = Toggle::Auto;  // "progress", default "auto": a progress display (auto:

@@ -52,7 +52,7 @@ nlohmann::json to_json(const RunSummary& s) {
   json out = {{"status", s.status},
               {"reason", s.reason},
               {"converged", s.converged},
-              {"stable", s.stable},
+              {"stable", s.stable ? json(*s.stable) : json(nullptr)},
               {"interrupted", s.interrupted},
               {"solver", s.solver},
               {"iterations", s.iterations},

@@ -4,10 +4,12 @@
 //   status            "converged" | "max_iterations" | "linear_solver_failed" |
 //                     "line_search_failed" | "integrator_failed" | "non_finite" | "interrupted" |
 //                     "step_failed" (a deployment step failed even with halved increments) |
-//                     "invalid_configuration" (kinetic damping kept leaving valid configurations)
+//                     "invalid_configuration" (kinetic damping kept leaving valid configurations) |
+//                     "output_failed" (the run stopped because an output could not be written)
 //   reason            one line
-//   converged, stable, interrupted   booleans; stable: an LL^T factorization of the free
-//                     Hessian succeeded at the final state (a saddle is never stable)
+//   converged, interrupted   booleans
+//   stable            of a converged state: an LL^T factorization of the free Hessian
+//                     succeeded (a saddle is never stable); null when the run did not converge
 //   solver            "newton" | "dynamics" | "kinetic-damping"
 //   iterations        Newton iterations, dynamics steps or kinetic-damping (leapfrog) iterations
 //   simulated_time    dynamics only
@@ -98,7 +100,8 @@ struct DeploymentSummary {
 struct RunSummary {
   std::string status;
   std::string reason;
-  bool converged = false, stable = false, interrupted = false;
+  bool converged = false, interrupted = false;
+  std::optional<bool> stable;  // of a converged state only: null otherwise
   std::string solver;
   long iterations = 0;
   std::optional<double> simulated_time;

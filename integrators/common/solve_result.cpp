@@ -31,6 +31,8 @@ StatusText text(SolveStatus status) {
       return {"interrupted", "interrupted"};
     case SolveStatus::StepFailed:
       return {"step_failed", "step failed"};
+    case SolveStatus::Diverged:
+      return {"diverged", "diverging"};
   }
   return {"unknown", "unknown"};
 }

@@ -33,16 +33,19 @@ enum class SolveStatus {
   LineSearchFailed,      // no acceptable step, stagnation at the round-off floor, or the
                          // objective rejected every trial point (Newton)
   IntegratorFailed,      // other failures of the time integrator (IDA's error test,
-                         // convergence, stagnating steps)
+                         // convergence, stagnating steps; dynamics and kinetic damping:
+                         // no progress beyond round-off, progress_watch.hpp)
   InvalidConfiguration,  // steps kept leaving the valid configurations (kinetic damping)
   NonFinite,             // NaN/inf in the energy, gradient or Hessian
   Interrupted,           // the stop flag was raised
   StepFailed,            // a deployment step failed even after halving its increment
+  Diverged,              // the motion only sped up, downhill, away from any equilibrium
+                         // (dynamics, kinetic damping: progress_watch.hpp)
 };
 
 // The status as summary.json names it: "converged", "max_iterations",
 // "linear_solver_failed", "line_search_failed", "integrator_failed",
-// "invalid_configuration", "non_finite", "interrupted", "step_failed".
+// "invalid_configuration", "non_finite", "interrupted", "step_failed", "diverged".
 // These names are an interface of the command line: never change them. (A
 // converged deployment is "completed" in the summary's "deployment" object
 // and in its reason: app/deploy_run.cpp.)
@@ -51,7 +54,7 @@ const char* to_string(SolveStatus status);
 // The status in words, for messages and reasons: "converged", "maximum
 // number of iterations reached", "linear solver failed", "line search
 // failed", "integrator failed", "invalid configurations", "non-finite
-// values", "interrupted", "step failed".
+// values", "interrupted", "step failed", "diverging".
 const char* describe(SolveStatus status);
 
 // A saddle that a solver left downhill (integrators/stability/saddle_escape.hpp).

@@ -49,6 +49,7 @@
 #include <string>
 
 #include "integrators/common/objective.hpp"
+#include "integrators/common/progress_watch.hpp"
 #include "integrators/common/solve_result.hpp"
 #include "integrators/dynamics/ida_system.hpp"
 #include "integrators/linear_algebra/shifted_factorization.hpp"
@@ -130,6 +131,9 @@ struct DynamicsStoppingOptions {
   double kinetic_tolerance = 1e-12;
   // Accepted steps, the end game's Newton steps included.
   long max_steps = 100000;
+  // Stops a run that diverges or stagnates (no progress beyond round-off)
+  // over a window of steps: Diverged or IntegratorFailed.
+  ProgressWatchOptions progress = {1000, 1e-12, 1};
 };
 
 // Rebases (objective.rebase: source-frame updates, omega folds); each restarts IDA at order 1.

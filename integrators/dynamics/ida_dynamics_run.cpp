@@ -101,6 +101,7 @@ DynamicsResult DynamicsRun::solve() {
   } else if (report.gradient_measure <= options.stopping.gradient_tolerance) {
     finish(SolveStatus::Converged, "in equilibrium at the start");
   } else {
+    watch.emplace(report.energy, report.gradient_measure, options.stopping.progress, "steps");
     integrate();
   }
   return final_result();
@@ -227,6 +228,13 @@ bool DynamicsRun::take_step(double h) {
   last_good_t = t;
   last_total = total;
   if (stops_here()) return false;
+  const Progress progress =
+      watch->observe(report.energy, report.gradient_measure, report.kinetic_energy);
+  if (progress != Progress::Continuing) {
+    finish(progress == Progress::Diverging ? SolveStatus::Diverged : SolveStatus::IntegratorFailed,
+           watch->reason());
+    return false;
+  }
   refresh_by_distance(h);
   rebase_if_due(h);
   return true;

@@ -84,6 +84,7 @@ class DynamicsRun {
   DynamicsReport report;          // of the last accepted step (or the start)
   bool on_slow_manifold = false;  // the start velocity is set (not at rest)
   std::optional<IdaIntegrator> integrator;  // after system, which must outlive it
+  std::optional<ProgressWatch> watch;       // divergence and stagnation, from the start
   bool q_only = false;                      // velocities out of IDA's error test
   double time_scale = 1.0;                  // 1 / rate of the slowest damped mode
   double total0 = 0.0;                      // E + K at the start

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "integrators/common/objective_evaluator.hpp"
@@ -94,7 +95,8 @@ class KineticDampingRun {
   long last_refresh = 0;  // iteration of the last mass refresh
   long last_rise = std::numeric_limits<long>::min() / 2;  // iteration of the last energy rise
   long since_rebase = 0;                                  // iterations since the last rebase
-  int rejected_since_peak = 0;  // rejected steps since the last kinetic-energy peak
+  int rejected_since_peak = 0;         // rejected steps since the last kinetic-energy peak
+  std::optional<ProgressWatch> watch;  // divergence and stagnation, from the start
 };
 
 KineticDampingRun::KineticDampingRun(Objective& target, const KineticDampingOptions& run_options,
@@ -110,6 +112,7 @@ KineticDampingRun::KineticDampingRun(Objective& target, const KineticDampingOpti
   energy0 = energy;
   report.energy = energy;
   report.gradient_measure = weighted_max_norm(weights, gradient);
+  if (options.progress.window > 0) watch.emplace(energy, report.gradient_measure, options.progress);
   velocity = Eigen::VectorXd::Zero(q.size());
   energy_at_reset = energy;
   safety = options.mass_safety;
@@ -163,6 +166,14 @@ bool KineticDampingRun::iterate() {
   if (report.gradient_measure <= options.gradient_tolerance &&
       report.kinetic_energy <= options.kinetic_tolerance * energy_scale) {
     finish(SolveStatus::Converged, "gradient and kinetic energy below tolerance");
+    return false;
+  }
+  const Progress progress =
+      watch ? watch->observe(energy, report.gradient_measure, report.kinetic_energy)
+            : Progress::Continuing;
+  if (progress != Progress::Continuing) {
+    finish(progress == Progress::Diverging ? SolveStatus::Diverged : SolveStatus::IntegratorFailed,
+           watch->reason());
     return false;
   }
   return true;

@@ -50,6 +50,7 @@
 #include <string>
 
 #include "integrators/common/objective.hpp"
+#include "integrators/common/progress_watch.hpp"
 #include "integrators/common/solve_result.hpp"
 
 namespace xshell {
@@ -120,6 +121,12 @@ struct KineticDampingOptions {
   // masses, so a state pressed against an invalid region creeps towards it
   // with ever shorter steps).
   int max_rejected_steps = 30;
+  // Stops a run that stagnates (no progress beyond round-off) over windows
+  // of iterations: IntegratorFailed. Off by default (window 0): on real
+  // linkages (uniform_linkage, sphere_open) kinetic damping near a 1e-8
+  // tolerance stays 20,000 iterations without halving its gradient and then
+  // converges. E.g. {2000, 1e-12, 10, false}.
+  ProgressWatchOptions progress = {0, 1e-12, 10, false};
 };
 
 // One per iteration (leapfrog step), and one for the initial state (0).
@@ -144,7 +151,8 @@ struct KineticDampingCallbacks {
 // The common result (solve_result.hpp) and what kinetic damping adds.
 // iterations counts leapfrog steps; InvalidConfiguration: steps kept
 // leaving the valid configurations, even with heavier masses; NonFinite
-// also when steps kept producing NaN/inf. factorizations: the stability
+// also when steps kept producing NaN/inf; Diverged and IntegratorFailed
+// (stagnation) as options.progress says. factorizations: the stability
 // check only.
 struct KineticDampingResult : SolveResult {
   long resets = 0;          // kinetic-energy peaks

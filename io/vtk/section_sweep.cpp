@@ -1,6 +1,7 @@
 #include "section_sweep.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -9,7 +10,6 @@ namespace xshell {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kDegenerate = 1e-12;
 
 // d1 made orthogonal to the unit tangent t and normalized; `fallback` (also
 // projected) when d1 is nearly parallel to t or zero.
@@ -48,12 +48,31 @@ std::vector<Eigen::Vector2d> section_outline(const SectionSnapshot& section, int
 std::vector<NodeFrame> node_frames(const RodSnapshot& rod) {
   const size_t n_edges = rod.nodes.size() - 1;
   std::vector<Eigen::Vector3d> tangents(n_edges);
+  std::vector<bool> defined(n_edges, false);
   for (size_t i = 0; i < n_edges; ++i) {
+    // Scaled first: an edge of 1e-170 would square to zero. Only an edge of
+    // exactly zero length (or a non-finite one) has no direction.
     const Eigen::Vector3d e = rod.nodes[i + 1] - rod.nodes[i];
-    if (e.norm() < kDegenerate)
-      throw std::invalid_argument("rod " + std::to_string(rod.rod_id) + ": edge " +
-                                  std::to_string(i) + " has zero length");
-    tangents[i] = e.normalized();
+    const double scale = e.cwiseAbs().maxCoeff();
+    if (!(scale > 0.0) || !std::isfinite(scale)) continue;
+    tangents[i] = (e / scale).normalized();
+    defined[i] = true;
+  }
+  // An edge without a direction borrows one from the edges before it (the
+  // leading ones from the first with a direction): a drawing must not fail,
+  // the solver's states are checked elsewhere. A rod with no direction at
+  // all is drawn normal to its first d1.
+  const auto first = std::find(defined.begin(), defined.end(), true);
+  Eigen::Vector3d carried = Eigen::Vector3d::UnitX();
+  if (first != defined.end())
+    carried = tangents[static_cast<size_t>(first - defined.begin())];
+  else if (!rod.d1.empty() && rod.d1[0].allFinite() && rod.d1[0].norm() > 0.0)
+    carried = rod.d1[0].unitOrthogonal();
+  for (size_t i = 0; i < n_edges; ++i) {
+    if (defined[i])
+      carried = tangents[i];
+    else
+      tangents[i] = carried;
   }
 
   std::vector<NodeFrame> frames(n_edges + 1);

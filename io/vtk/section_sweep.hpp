@@ -36,7 +36,8 @@ struct NodeFrame {
 };
 
 // One frame per node of `rod` (n + 1 entries); end nodes take the frame of
-// their edge. Throws std::invalid_argument for a zero-length edge.
+// their edge. An edge of zero length takes the tangent of its nearest edge
+// that has one (never throws: any rod short of non-finite nodes is drawn).
 std::vector<NodeFrame> node_frames(const RodSnapshot& rod);
 
 }  // namespace xshell

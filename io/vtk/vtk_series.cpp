@@ -1,5 +1,6 @@
 #include "vtk_series.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <stdexcept>
@@ -72,10 +73,41 @@ bool VtkSeries::write(const Snapshot& snapshot, bool force) {
 
   // Only a complete step enters the index.
   entries_.insert(entries_.end(), step.begin(), step.end());
+  kept_.push_back(steps_written_);
   ++steps_written_;
   calls_since_write_ = 0;
+  if (options_.max_steps >= 2 && steps_kept() >= options_.max_steps) thin();
   write_pvd();
   return true;
+}
+
+// Keeps the steps at even positions and the latest; removes the others'
+// files after their .pvd entries (a run killed between the two leaves the
+// files unindexed, never an entry without its file).
+void VtkSeries::thin() {
+  std::vector<int> kept;
+  std::vector<std::string> removed;
+  for (std::size_t i = 0; i < kept_.size(); ++i) {
+    if (i % 2 == 0 || i + 1 == kept_.size()) {
+      kept.push_back(kept_[i]);
+      continue;
+    }
+    for (VtkPart part : {VtkPart::Rods, VtkPart::Frames, VtkPart::Joints, VtkPart::Solids})
+      removed.push_back(step_file_name(part, kept_[i]));
+  }
+  std::vector<PvdEntry> entries;
+  for (const PvdEntry& entry : entries_)
+    if (std::find(removed.begin(), removed.end(), entry.file) == removed.end())
+      entries.push_back(entry);
+  entries_ = std::move(entries);
+  kept_ = std::move(kept);
+  write_pvd();
+  for (const std::string& file : removed) {
+    std::error_code ignored;
+    std::filesystem::remove(directory_ / file, ignored);
+  }
+  options_.every *= 2;
+  ++thinnings_;
 }
 
 void VtkSeries::close() {

@@ -13,6 +13,12 @@
 //
 // Cadence: write() writes when forced, or when `every` calls have been made
 // since the last write. The caller forces the first and final states.
+//
+// Size: a long run (a million kinetic-damping iterations, a deployment of
+// thousands of steps) would write four files per step without end. Once the
+// series holds max_steps steps, every other one is removed (files and .pvd
+// entries; the first and the latest stay) and `every` doubles: the series
+// keeps at most max_steps steps spread over the whole run, however long.
 #pragma once
 
 #include <filesystem>
@@ -30,6 +36,7 @@ struct SeriesOptions {
   VtkFormat format = VtkFormat::Binary;
   bool solids = true;   // also write solids_*.vtp (larger files)
   SolidsOptions solid;  // how solids are swept
+  int max_steps = 0;    // thin the series when it holds this many steps (>= 2; 0: never)
 };
 
 class VtkSeries {
@@ -55,17 +62,23 @@ class VtkSeries {
 
   const std::filesystem::path& directory() const { return directory_; }
   std::filesystem::path pvd_path() const { return directory_ / "series.pvd"; }
-  int steps_written() const { return steps_written_; }
+  int steps_written() const { return steps_written_; }  // ever (the files' numbers)
+  int steps_kept() const { return static_cast<int>(kept_.size()); }
+  int every() const { return options_.every; }  // doubled by each thinning
+  int thinnings() const { return thinnings_; }
   const std::vector<PvdEntry>& entries() const { return entries_; }
 
  private:
   void write_pvd() const;
+  void thin();
 
   std::filesystem::path directory_;
   SeriesOptions options_;
   std::vector<PvdEntry> entries_;
   int steps_written_ = 0;
   int calls_since_write_ = 0;
+  std::vector<int> kept_;  // numbers of the steps in the series, in order
+  int thinnings_ = 0;
   bool closed_ = false;
 };
 

@@ -116,13 +116,26 @@ TEST_CASE("failing solve: a gradient that is not finite (gravity times density o
   CHECK(s["status"] == "non_finite");
   CHECK(contains(s["reason"], "not finite"));
   CHECK(s["converged"] == false);
-  CHECK(s["stable"] == false);
+  CHECK(s["stable"].is_null());  // not converged: no claim
   // The last good state is the start: every vertex where the file put it.
   const nlohmann::json start = read_json(dir / "out" / "state.json");
   CHECK(start["format"] == "xshell-state");
   CHECK(s["vertices"][13][0].get<double>() == doctest::Approx(0.125));
   CHECK(s["vertices"][13][2].get<double>() == 0.0);
   CHECK(check_outputs_complete(dir / "out") >= 6);
+}
+
+TEST_CASE("failing solve: damped dynamics under a force of 1e30 stops as diverged") {
+  Scratch dir("fail-diverged");
+  // Before: every step to the limit (past 120 s on a large linkage, the
+  // energy at -3.6e36).
+  std::string text = sample_config(dir / "out", R"(, "solver": {"method": "dynamics"})");
+  const std::size_t force = text.find("[0, 0, -5.0]");
+  REQUIRE(force != std::string::npos);
+  text.replace(force, 12, "[0, 0, -1e30]");
+  const Failed f = run_failing(dir, text, "diverged");
+  CHECK(contains(f.summary["reason"], "diverging: over the last 1000 steps"));
+  CHECK(f.summary["iterations"].get<long>() == 1000);
 }
 
 TEST_CASE("failing solve: a singular system (supports that leave rigid motions free)") {
@@ -138,7 +151,7 @@ TEST_CASE("failing solve: a singular system (supports that leave rigid motions f
                      "translation along y; rotation about z through (",
                      0) == 0);
   CHECK(contains(reason, "no convergence in 4 iterations"));
-  CHECK(f.summary["stable"] == false);
+  CHECK(f.summary["stable"].is_null());  // not converged: no claim
   CHECK(contains(f.run.errors, "xshell: warning: the supports leave rigid motions free ("));
 }
 

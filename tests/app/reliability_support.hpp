@@ -137,17 +137,22 @@ inline CommandResult run_xshell_limited(const std::string& args, const fs::path&
   return r;
 }
 
-// A running `xshell relax CONFIG --quiet` (stderr to `dir`/stderr.txt).
+// A running `xshell relax CONFIG --quiet [EXTRA...]` (stderr to
+// `dir`/stderr.txt).
 class RelaxProcess {
  public:
-  RelaxProcess(const fs::path& config, const fs::path& dir) : errors_(dir / "stderr.txt") {
+  RelaxProcess(const fs::path& config, const fs::path& dir,
+               const std::vector<std::string>& extra = {})
+      : errors_(dir / "stderr.txt") {
     const std::string binary = XSHELL_BINARY, path = config.string(), err = errors_.string();
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    char* argv[] = {const_cast<char*>(binary.c_str()), const_cast<char*>("relax"),
-                    const_cast<char*>(path.c_str()), const_cast<char*>("--quiet"), nullptr};
-    started_ = posix_spawn(&pid_, binary.c_str(), &actions, nullptr, argv, environ) == 0;
+    std::vector<char*> argv = {const_cast<char*>(binary.c_str()), const_cast<char*>("relax"),
+                               const_cast<char*>(path.c_str()), const_cast<char*>("--quiet")};
+    for (const std::string& argument : extra) argv.push_back(const_cast<char*>(argument.c_str()));
+    argv.push_back(nullptr);
+    started_ = posix_spawn(&pid_, binary.c_str(), &actions, nullptr, argv.data(), environ) == 0;
     posix_spawn_file_actions_destroy(&actions);
   }
   ~RelaxProcess() {

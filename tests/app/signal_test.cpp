@@ -180,4 +180,47 @@ TEST_CASE("interrupt: a closed stderr (SIGPIPE) does not stop a run before its o
   CHECK(check_outputs_complete(dir / "out") >= 6);
 }
 
+TEST_CASE("interrupt: past the grace period the last written step's state is saved at once") {
+  Scratch dir("interrupt-grace");
+  // --grace 0: the run may not finish the iteration in progress (on a large
+  // linkage one takes minutes: before, SIGTERM waited for it). Whichever
+  // comes first, the iteration's end or the grace period's, the run ends
+  // with status 130, a summary that says "interrupted" and a state that
+  // --init accepts.
+  write_text(dir / "run.json", endless_newton());
+  RelaxProcess run(dir / "run.json", dir.path(), {"--grace", "0"});
+  REQUIRE(run.started());
+  REQUIRE(run.wait_for(dir / "out" / "rods_000003.vtp"));
+  const auto sent = std::chrono::steady_clock::now();
+  run.signal(SIGTERM);
+  const int raw = run.wait();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  INFO("stderr: " << run.errors());
+  REQUIRE(WIFEXITED(raw));
+  CHECK(WEXITSTATUS(raw) == 130);
+  CHECK(seconds < 5.0);
+  const std::string line = last_line(run.errors());
+  CHECK(line.rfind("xshell: interrupted", 0) == 0);
+  const nlohmann::json s = read_json(dir / "out" / "summary.json");
+  CHECK(s["status"] == "interrupted");
+  CHECK(s["interrupted"] == true);
+  CHECK(contains(s["reason"], "interrupted by a signal"));
+  CHECK(std::isfinite(s["energy"]["total"].get<double>()));
+  CHECK(check_outputs_complete(dir / "out") >= 6);
+  CHECK(temporary_files(dir / "out").empty());
+  write_text(dir / "again.json", config_with(grid_obj(), R"(, "solver": {"max_iterations": 1})"));
+  const CommandResult again =
+      run_xshell("relax again.json --init out/state.json --out again --quiet", dir.path());
+  CHECK(again.status != 2);  // the saved state is a valid start
+}
+
+TEST_CASE("interrupt: --grace out of range is a usage error") {
+  Scratch dir("interrupt-grace-usage");
+  write_text(dir / "run.json", endless_newton());
+  const CommandResult r = run_xshell("relax run.json --grace -1", dir.path());
+  CHECK(r.status == 2);
+  CHECK(r.errors.rfind("xshell: error: relax: --grace", 0) == 0);
+}
+
 }  // namespace xshell::test

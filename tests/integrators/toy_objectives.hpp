@@ -13,9 +13,12 @@
 //     velocity), like the rod model's frame updates;
 //   - SqrtWell: a separable convex energy defined only on part of the
 //     space; outside it either set() throws std::domain_error or the
-//     values are NaN, to test the solvers' failure handling.
+//     values are NaN, to test the solvers' failure handling;
+//   - Slope: a convex energy unbounded below (no equilibrium: a load that
+//     nothing holds), to test that the solvers see divergence.
 #pragma once
 
+#include <cmath>
 #include <stdexcept>
 
 #include "stencil_objective.hpp"
@@ -167,6 +170,38 @@ class SqrtWell : public Objective {
   double invalid_below_;
   Eigen::SparseMatrix<double> hessian_;
   mutable long invalid_ = 0;
+};
+
+// E = sum_i sqrt(1 + x_i^2) - f x_i with f > 1: convex (Hessian
+// (1 + x_i^2)^(-3/2) > 0) but unbounded below, its gradient tending to
+// 1 - f as x_i grows: a motion downhill that never ends. Starts at 0.
+class Slope : public Objective {
+ public:
+  Slope(int n, double f) : f_(f), x_(Eigen::VectorXd::Zero(n)), hessian_(n, n) {
+    for (int i = 0; i < n; ++i) hessian_.insert(i, i) = 1.0;
+    hessian_.makeCompressed();
+  }
+  Eigen::Index size() const override { return x_.size(); }
+  Eigen::VectorXd get() const override { return x_; }
+  void set(const Eigen::VectorXd& q) override { x_ = q; }
+  double energy() const override {
+    return ((1.0 + x_.array().square()).sqrt() - f_ * x_.array()).sum();
+  }
+  Eigen::VectorXd gradient() const override {
+    return (x_.array() / (1.0 + x_.array().square()).sqrt() - f_).matrix();
+  }
+  const Eigen::SparseMatrix<double>& hessian() override {
+    for (Eigen::Index i = 0; i < x_.size(); ++i)
+      hessian_.coeffRef(i, i) = std::pow(1.0 + x_[i] * x_[i], -1.5);
+    return hessian_;
+  }
+  Eigen::VectorXd gradient_weights() const override { return Eigen::VectorXd::Ones(x_.size()); }
+  Eigen::VectorXd mass() const override { return Eigen::VectorXd::Ones(x_.size()); }
+
+ private:
+  double f_;
+  Eigen::VectorXd x_;
+  Eigen::SparseMatrix<double> hessian_;
 };
 
 }  // namespace xshell::test

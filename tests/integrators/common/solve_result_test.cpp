@@ -31,6 +31,7 @@ const std::vector<Named>& every_status() {
       {SolveStatus::NonFinite, "non_finite", "non-finite values"},
       {SolveStatus::Interrupted, "interrupted", "interrupted"},
       {SolveStatus::StepFailed, "step_failed", "step failed"},
+      {SolveStatus::Diverged, "diverged", "diverging"},
   };
   return all;
 }
@@ -45,8 +46,8 @@ TEST_CASE("every solve status has its summary name and its words") {
     CHECK(std::string(describe(n.status)) == n.words);
     names.insert(to_string(n.status));
   }
-  // The list covers the enum: its values are 0 .. StepFailed, all distinct.
-  CHECK(every_status().size() == static_cast<size_t>(SolveStatus::StepFailed) + 1);
+  // The list covers the enum: its values are 0 .. Diverged, all distinct.
+  CHECK(every_status().size() == static_cast<size_t>(SolveStatus::Diverged) + 1);
   CHECK(names.size() == every_status().size());
 }
 
@@ -58,7 +59,7 @@ TEST_CASE("a solve result is converged exactly when its status is Converged") {
     CHECK(r.converged() == (n.status == SolveStatus::Converged));
     ++checked;
   }
-  CHECK(checked == 9);
+  CHECK(checked == 10);
   CHECK(SolveResult{}.status == SolveStatus::IterationLimit);
 }
 

@@ -434,4 +434,33 @@ TEST_CASE("an accepted step that ends in an invalid configuration is taken again
   }
 }
 
+TEST_CASE("damped dynamics stops on divergence, and below the round-off floor") {
+  SUBCASE("a load that nothing holds: divergence, long before the step limit") {
+    // Before: every step up to the limit (a force of 1e30 on a linkage:
+    // past 120 s, the energy at -3.6e36). Windows of 50 steps: the toy's
+    // motion otherwise reaches the end game (Newton), which stops on
+    // stagnation instead.
+    Slope slope(3, 2.0);
+    DynamicsOptions options = tight(DynamicsForm::SecondOrder, MassModel::Physical);
+    options.stopping.progress.window = 50;
+    const DynamicsRun run = run_dynamics(slope, options);
+    INFO(run.result.reason);
+    CHECK(run.result.status == SolveStatus::Diverged);
+    CHECK(run.result.reason.rfind("diverging: over the last 50 steps the energy fell faster", 0) ==
+          0);
+    CHECK(run.result.iterations < 1000);
+    CHECK(std::isfinite(slope.energy()));
+  }
+  SUBCASE("a tolerance of 1e-30: a stop with a reason, long before the step limit") {
+    StencilObjective chain = make_chain();
+    DynamicsOptions options = tight(DynamicsForm::SecondOrder, MassModel::Physical);
+    options.stopping.gradient_tolerance = 1e-30;
+    const DynamicsRun run = run_dynamics(chain, options);
+    INFO(run.result.reason);
+    CHECK_FALSE(run.result.converged());
+    CHECK(run.result.status != SolveStatus::IterationLimit);
+    CHECK(run.result.iterations < 20000);
+  }
+}
+
 }  // namespace xshell::test

@@ -103,4 +103,34 @@ TEST_CASE("node frames: a left-handed input frame gives the right-handed one") {
   CHECK(checks == 9);
 }
 
+TEST_CASE(
+    "node frames: a very short edge keeps its direction, a zero one borrows its neighbour's") {
+  Snapshot snapshot = demo_snapshot();
+  RodSnapshot& rod = snapshot.rods[0];
+  REQUIRE(rod.nodes.size() >= 4);
+  // Edge 1 is 3e-12 long (before: "rod 0: edge 1 has zero length", which
+  // failed the run's outputs), edge 2 of zero length.
+  const Eigen::Vector3d up = rod.d2[1].normalized();
+  rod.nodes[2] = rod.nodes[1] + 3e-12 * up;
+  const Eigen::Vector3d shift = rod.nodes[2] - rod.nodes[3];
+  for (size_t k = 4; k < rod.nodes.size(); ++k) rod.nodes[k] += shift;
+  rod.nodes[3] = rod.nodes[2];
+  std::vector<NodeFrame> frames;
+  REQUIRE_NOTHROW(frames = node_frames(rod));
+  // Node 1 bisects edge 0 and the short edge 1 (along `up`, to round-off of
+  // the coordinates: 1e-16 / 3e-12).
+  const Eigen::Vector3d before = (rod.nodes[1] - rod.nodes[0]).normalized();
+  const Eigen::Vector3d short_edge = (rod.nodes[2] - rod.nodes[1]).normalized();
+  CHECK((short_edge - up).norm() < 1e-3);
+  CHECK((frames[1].tangent - (before + short_edge).normalized()).norm() < 1e-12);
+  // Node 2 joins edge 1 and the zero edge 2, which takes edge 1's direction.
+  CHECK((frames[2].tangent - short_edge).norm() < 1e-12);
+  int checks = 0;
+  for (const NodeFrame& f : frames) {
+    XSHELL_COUNTED_CHECK(checks, std::abs(f.tangent.norm() - 1.0) < 1e-12);
+    XSHELL_COUNTED_CHECK(checks, (f.d1.cross(f.d2) - f.tangent).norm() < 1e-12);
+  }
+  CHECK(checks == 2 * static_cast<int>(frames.size()));
+}
+
 }  // namespace xshell::test

@@ -134,4 +134,38 @@ TEST_CASE("series: misuse is rejected") {
   CHECK(read_pvd(series.pvd_path()).empty());
 }
 
+TEST_CASE("series: at max_steps every other step goes and the cadence halves") {
+  ScratchDir dir("series-thin");
+  SeriesOptions options;
+  options.max_steps = 4;
+  options.solids = false;
+  VtkSeries series(dir.path(), options);
+  // Calls 0..19: before, 20 steps (60 files) were kept.
+  std::vector<double> kept_times;
+  for (int call = 0; call < 20; ++call) series.write(demo_snapshot(0.1 * call, call), call == 0);
+  series.write(demo_snapshot(2.0, 20), true);  // the final state
+  CHECK(series.thinnings() >= 2);
+  CHECK(series.every() == (1 << series.thinnings()));
+  CHECK(series.steps_kept() < 4);
+  series.close();
+  const auto sets = read_pvd(series.pvd_path());
+  REQUIRE(sets.size() == 3 * static_cast<size_t>(series.steps_kept()));
+  // The first and the final state stay; every entry's file exists, and no
+  // step file is left that the index does not list.
+  CHECK(sets.front().timestep == 0.0);
+  CHECK(sets.back().timestep == 2.0);
+  std::set<std::string> indexed;
+  for (const auto& set : sets) {
+    CHECK(std::filesystem::exists(dir.path() / set.file));
+    indexed.insert(set.file);
+  }
+  int step_files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    if (entry.path().extension() == ".vtp") {
+      ++step_files;
+      CHECK(indexed.count(entry.path().filename().string()) == 1);
+    }
+  CHECK(step_files == static_cast<int>(sets.size()));
+}
+
 }  // namespace xshell::test
