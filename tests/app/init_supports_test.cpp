@@ -13,20 +13,6 @@ namespace xshell::test {
 
 namespace {
 
-// A flat 3 x 3 grid of rods, spacing 0.25 m: every joint opens at pi/2.
-std::string flat_grid_obj() {
-  std::ostringstream o;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) o << "v " << 0.25 * j << " " << 0.25 * i << " 0\n";
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      const int v = i * 3 + j + 1;  // 1-based
-      if (j + 1 < 3) o << "l " << v << " " << v + 1 << "\n";
-      if (i + 1 < 3) o << "l " << v << " " << v + 3 << "\n";
-    }
-  return o.str();
-}
-
 // The grid held at its centre (vertex 4) and by `supports`; `solver` and
 // `top` are extra keys of "solver" and of the configuration.
 std::string grid_config(const std::string& supports, const std::string& solver = "",

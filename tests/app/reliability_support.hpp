@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -71,6 +72,21 @@ inline std::string config_with(const std::string& linkage, const std::string& ex
   "output": {"directory": "out"})" +
          extra + R"(
 })";
+}
+
+// The text of an OBJ file: a flat 3 x 3 grid of rods, spacing 0.25 m; every
+// joint opens at pi/2.
+inline std::string flat_grid_obj() {
+  std::ostringstream o;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) o << "v " << 0.25 * j << " " << 0.25 * i << " 0\n";
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const int v = i * 3 + j + 1;  // 1-based
+      if (j + 1 < 3) o << "l " << v << " " << v + 1 << "\n";
+      if (i + 1 < 3) o << "l " << v << " " << v + 3 << "\n";
+    }
+  return o.str();
 }
 
 // The bundled grid sample (absolute path).
