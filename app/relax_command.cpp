@@ -192,6 +192,17 @@ void warn(Run& run, const std::string& text) {
   run.warnings.push_back(text);
 }
 
+// The model holds one support per selected vertex, in the order of the
+// configuration's entries: `far` names them by their entry (supports[i]).
+void name_by_entry(const std::vector<std::vector<int>>& support_vertices,
+                   std::vector<FarSupport>& far) {
+  std::vector<int> entry_of;
+  for (std::size_t i = 0; i < support_vertices.size(); ++i)
+    entry_of.insert(entry_of.end(), support_vertices[i].size(), static_cast<int>(i));
+  for (FarSupport& f : far)
+    if (f.index < static_cast<int>(entry_of.size())) f.index = entry_of[f.index];
+}
+
 // Reads the configuration, the linkage and the state to start from, and
 // builds the problem. Returns 0, or the exit status after saying why not.
 int load(const RelaxArguments& args, Run& run) {
@@ -218,6 +229,7 @@ int load(const RelaxArguments& args, Run& run) {
     run.default_support = run.problem->default_support_vertex();
     // Before the deployment's problem, made again from this one's state.
     run.far_supports = far_supports(*run.problem, run.setup.statics.supports.size());
+    name_by_entry(run.setup.support_vertices, run.far_supports);
     prepare_deployment(config, run.problem, run.setup.statics);  // no-op without "deployment"
   } catch (const InputError& e) {
     std::cerr << "xshell: error: " << e.what() << "\n";

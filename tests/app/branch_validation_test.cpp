@@ -40,13 +40,24 @@ struct Deployed {
 
 // deployment.csv's last column ("stable"), per step.
 std::vector<std::string> stable_column(const fs::path& csv) {
-  std::vector<std::string> out;
   const std::string table = read_text(csv);
+  const auto fields = [](const std::string& row) {
+    std::vector<std::string> out;
+    for (size_t start = 0;;) {
+      const size_t comma = row.find(',', start);
+      out.push_back(row.substr(start, comma - start));
+      if (comma == std::string::npos) return out;
+      start = comma + 1;
+    }
+  };
+  const std::vector<std::string> header = fields(table.substr(0, table.find('\n')));
+  const size_t column = std::find(header.begin(), header.end(), "stable") - header.begin();
+  REQUIRE(column < header.size());
+  std::vector<std::string> out;
   size_t start = table.find('\n') + 1;
   while (start < table.size()) {
     const size_t end = table.find('\n', start);
-    const std::string row = table.substr(start, end - start);
-    out.push_back(row.substr(row.rfind(',') + 1));
+    out.push_back(fields(table.substr(start, end - start)).at(column));
     start = end + 1;
   }
   return out;

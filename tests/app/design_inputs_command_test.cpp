@@ -58,4 +58,38 @@ TEST_CASE("relax: a transformed sample held on its boundary under a line load") 
   CHECK(fab["rods"][0]["length"].get<double>() > 1.9);  // the file's rods are 1 long
 }
 
+TEST_CASE(
+    "relax --init: a support far from where it is held is named by its entry of \"supports\"") {
+  // The first run lets the middle of the grid sag under a line load; the
+  // second starts there and holds two of the sagged joints at the input. The
+  // model has one support per selected vertex: the warning and the reason
+  // name the configuration's entry, supports[1], not the model's sixth.
+  const fs::path dir = temporary_directory("far-selected");
+  const std::string corners = R"({"select": [1, 4, 9, 28], "fix": ["position"]})";
+  const std::string load =
+      R"("loads": {"line_loads": [{"rods": "all", "force_per_length": [0, 0, -40]}]})";
+  write_text(dir / "sag.json", R"({
+  "linkage": ")" + (fs::path(XSHELL_SAMPLES_DIR) / "grid.obj").string() +
+                                   R"(",
+  "subdivisions": 5, "rest_shape": "straight",
+  "material": {"young_modulus": 2.0e10,
+               "cross_section": {"shape": "rectangle", "width": 0.01, "height": 0.007}},
+  "supports": [)" + corners + R"(], )" +
+                                   load + R"(, "output": {"directory": "sag"}})");
+  const CommandResult first = run_xshell("relax sag.json", dir);
+  CAPTURE(first.errors);
+  REQUIRE(first.status == 0);
+  const double sag = read_json(dir / "sag" / "summary.json")["vertices"][12][2].get<double>();
+  REQUIRE(sag < -0.016);  // more than 1% of the 1.41 m diagonal
+  std::string held = read_text(dir / "sag.json");
+  held.replace(held.find(corners), corners.size(),
+               corners + R"(, {"select": [12, 13], "fix": ["position"]})");
+  held.replace(held.find(R"("directory": "sag")"), 18, R"("directory": "held")");
+  write_text(dir / "held.json", held);
+  const CommandResult second = run_xshell("relax held.json --init sag/state.json", dir);
+  CAPTURE(second.errors);
+  CHECK(second.errors.find("supports[1] (vertex 12) starts") != std::string::npos);
+  CHECK(second.errors.find("supports[5]") == std::string::npos);
+}
+
 }  // namespace xshell::test
