@@ -10,8 +10,8 @@ namespace {
 
 nlohmann::json vector3_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-// A list of distinct integers, each checked by `check` (which fails the
-// element); `what` names one in messages ("vertex", "rod").
+// A non-empty list of distinct integers, each in [lo, hi]; `what` names one
+// in messages ("vertex", "rod").
 std::vector<int> distinct_integers(const JsonField& f, const std::string& what, int lo, int hi) {
   std::vector<int> out;
   for (const JsonField& item : f.elements()) {
@@ -35,8 +35,14 @@ void read_region(const JsonField& f, SupportSelect& s) {
   bool any = false;
   for (int c = 0; c < 3; ++c) {
     const std::string axis = kAxes[c];
-    if (auto lo = f.find(axis + "_min")) s.region_min[c] = lo->number(), any = true;
-    if (auto hi = f.find(axis + "_max")) s.region_max[c] = hi->number(), any = true;
+    if (auto lo = f.find(axis + "_min")) {
+      s.region_min[c] = lo->number();
+      any = true;
+    }
+    if (auto hi = f.find(axis + "_max")) {
+      s.region_max[c] = hi->number();
+      any = true;
+    }
     if (s.region_min[c] > s.region_max[c])
       f.fail(axis + "_min is above " + axis + "_max: the region is empty");
   }
