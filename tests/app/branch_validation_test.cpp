@@ -87,7 +87,7 @@ void check_every_step_stable(const Deployed& d, size_t steps) {
 
 }  // namespace
 
-TEST_CASE("manta ray deployed to 93 degrees leaves the flat state up, or down when asked" *
+TEST_CASE("manta ray deployed to 93 degrees leaves the flat state up (or down when asked)" *
           doctest::test_suite("validation")) {
   if (!fs::exists(kData / "manta_ray_5ca2f7ab.obj"))
     XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
@@ -140,7 +140,7 @@ TEST_CASE("manta ray deployed by damped dynamics reaches Newton's branch" *
                                                                                    << " mm");
 }
 
-TEST_CASE("darth vader opened at two joints to 2 rad leaves the flat state up, stable" *
+TEST_CASE("darth vader opened at two joints to 2 rad leaves the flat state up and stays stable" *
           doctest::test_suite("validation")) {
   if (!fs::exists(kData / "darth_vader_fig5_1693d9a2.obj"))
     XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
@@ -161,7 +161,7 @@ TEST_CASE("darth vader opened at two joints to 2 rad leaves the flat state up, s
 // pinned) first converges to a flat saddle, then reaches a stable state from
 // which a deployment by +0.3 rad is stable at every step (n_s = 8; n_s = 10
 // in the README).
-TEST_CASE("largest design: relaxed past its flat saddle, then deployed by 0.3 rad" *
+TEST_CASE("largest design: relaxed past its flat saddle and then deployed by 0.3 rad" *
           doctest::test_suite("validation")) {
   if (!fs::exists(kData / "large_6d35a972.obj")) XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
   const fs::path dir = temporary_directory("largest_saddle");
