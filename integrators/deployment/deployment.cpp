@@ -365,17 +365,19 @@ void Deployer::start_twin() {
   twin_->threshold = 1e-6 * box.diagonal().norm();
 }
 
-// Keeps the twin at s; when this step's state lies on the loads' side,
+// When this step's state lies on the loads' side: brings the twin to s and
 // solves the loaded problem from the twin's state, and a stable
 // equilibrium on the user's side replaces the step's (a and the state) and
 // ends the twin.
 void Deployer::prefer_user_branch(double s, int step, Attempt& a) {
+  const Eigen::Vector3d& direction = options_.buckling_direction;
+  // On the user's side already: the twin waits (a later advance catches up
+  // in one step, or ends it).
+  if (mean_displacement(problem_, direction) >= 0.0) return;
   if (!twin_->deployer.advance(s, step, 0)) {
-    end_twin();  // no unloaded state to start from
+    end_twin();  // no symmetric state to start from
     return;
   }
-  const Eigen::Vector3d& direction = options_.buckling_direction;
-  if (mean_displacement(problem_, direction) >= 0.0) return;
   // Until the twin has left its symmetric state it has nothing to offer.
   if (!(mean_displacement(twin_->problem, direction) > twin_->threshold)) return;
   LinkageProblem kept = problem_;

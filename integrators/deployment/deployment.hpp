@@ -96,9 +96,10 @@ struct DeploymentOptions {
   // twin: the same problem without the loads' component along the
   // direction, which leaves its symmetric state by the escape on the
   // user's side. At every step whose state lies on the loads' side (the
-  // vertices' mean displacement along the direction below 0) while the
-  // twin has left its symmetric state, the loaded problem is solved again
-  // from the twin's state; the first stable equilibrium so found on the
+  // vertices' mean displacement along the direction below 0) the twin is
+  // brought to the same step (it waits while the state is on the user's
+  // side), and once it has left its symmetric state the loaded problem is
+  // solved again from the twin's state; the first stable equilibrium so found on the
   // user's side replaces the step, the twin ends, and the continuation
   // follows that branch (docs/model.md section 9.6).
   bool follow_unloaded_twin = true;
