@@ -156,6 +156,7 @@ DeploymentSummary deployment_summary(const Deployment& d, const DeploymentResult
     ds.target_average_angle = d.average_opening_angle;
   ds.final_average_angle = average_opening_angle(problem.linkage());
   ds.final_torque = result.steps.empty() ? 0.0 : result.steps.back().torque;
+  if (result.branch_switch_step >= 0) ds.branch_switch_step = result.branch_switch_step;
   return ds;
 }
 

@@ -206,7 +206,6 @@ void deployment_step(LinkageProblem& problem, BenchResult& r) {
   plan.steps = 1;
   DeploymentOptions options;
   options.newton.gradient_tolerance = 1e-6;
-  options.newton.max_iterations = 100;
   DeploymentResult result;
   try {
     result = deploy(problem, plan, options);
@@ -297,7 +296,6 @@ BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
     LinkageObjective objective(problem);
     NewtonOptions options;
     options.gradient_tolerance = 1e-6;
-    options.max_iterations = 100;
     NewtonSolver solver(objective, options);
     std::vector<double> seconds, cpu, hessian_s, factorization_s, rest_s;
     long factorizations = 0;

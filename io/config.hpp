@@ -187,7 +187,7 @@ struct Loads {
 struct SolverOptions {
   SolverMethod method = SolverMethod::Newton;  // "method", default "newton"
   double gradient_tolerance = 1e-6;  // "gradient_tolerance", > 0, default 1e-6; dimensionless
-  int max_iterations = 100;          // "max_iterations", >= 1, default 100 (newton)
+  int max_iterations = 300;          // "max_iterations", >= 1, default 300 (newton)
   LineSearchSetting line_search = LineSearchSetting::Energy;  // "line_search", default "energy"
   MassSetting mass = MassSetting::Physical;                   // "mass", default "physical"
   std::optional<double> damping;  // "damping", >= 0 or "auto" (nullopt, the default);

@@ -92,6 +92,8 @@ nlohmann::json to_json(const RunSummary& s) {
                           d->target_average_angle ? json(*d->target_average_angle) : json(nullptr)},
                          {"final_average_angle", d->final_average_angle},
                          {"final_torque", d->final_torque},
+                         {"branch_switch_step",
+                          d->branch_switch_step ? json(*d->branch_switch_step) : json(nullptr)},
                          {"table", d->table},
                          {"plot", d->plot ? json(*d->plot) : json(nullptr)}};
   }

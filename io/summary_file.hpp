@@ -47,7 +47,9 @@
 //                     retried with half the increment), iterations (solver iterations or time
 //                     steps, all steps), start_average_angle, target_average_angle (null for
 //                     joint_angles), final_average_angle (radians), final_torque (dE/dA, energy
-//                     per radian), table ("deployment.csv"), plot ("deployment.png" or null)}
+//                     per radian), table ("deployment.csv"), plot ("deployment.png" or null),
+//                     branch_switch_step (the step at which the loaded branch on the side of
+//                     solver.buckling_direction was taken from the unloaded twin, or null)}
 //   reactions, stresses, joint_forces, lowest_eigenvalues, buckling_load_factor,
 //   stability_analysis   engineering results of the final state (engineering_json.hpp)
 //   configuration     the resolved configuration; version: the program's version
@@ -93,6 +95,7 @@ struct DeploymentSummary {
   std::optional<double> target_average_angle;
   double final_average_angle = 0.0;
   double final_torque = 0.0;
+  std::optional<int> branch_switch_step;
   std::string table = "deployment.csv";
   std::optional<std::string> plot;
 };

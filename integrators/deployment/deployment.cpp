@@ -1,8 +1,11 @@
 #include "integrators/deployment/deployment.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -29,6 +32,8 @@ struct Attempt {
   SolveResult solve;
   double torque = 0.0;  // dE/dA or dE/dtheta
 };
+
+struct Twin;
 
 // Deploys one problem: the state of a run of deploy().
 class Deployer {
@@ -72,7 +77,9 @@ class Deployer {
           std::make_unique<ConstrainedNewtonSolver>(objective_, *constraint_, options_.newton);
     if (!constraint_ && options.solver == DeploymentSolver::Newton)
       newton_ = std::make_unique<NewtonSolver>(objective_, options_.newton);
+    start_twin();
   }
+  ~Deployer();
 
   DeploymentResult run() {
     const Clock::time_point start = Clock::now();
@@ -156,14 +163,26 @@ class Deployer {
     problem_.set_dofs(r);
   }
 
-  Attempt solve(double s) {
+  // Solves at s; `abandon`, when given, is asked after every iteration (or
+  // time step) and stops the solve (as interrupted) when it says so.
+  Attempt solve(double s, const std::function<bool()>& abandon = {}) {
     Attempt a;
+    std::atomic<bool> stop{false};
+    const auto check = [&] {
+      if ((callbacks_.stop && *callbacks_.stop) || (abandon && abandon())) stop = true;
+    };
     NewtonCallbacks newton_callbacks;
-    newton_callbacks.on_iteration = callbacks_.on_newton_iteration;
-    newton_callbacks.stop = callbacks_.stop;
+    newton_callbacks.on_iteration = [&](const NewtonReport& report) {
+      if (callbacks_.on_newton_iteration) callbacks_.on_newton_iteration(report);
+      check();
+    };
+    newton_callbacks.stop = abandon ? &stop : callbacks_.stop;
     DynamicsCallbacks dynamics_callbacks;
-    dynamics_callbacks.on_step = callbacks_.on_dynamics_step;
-    dynamics_callbacks.stop = callbacks_.stop;
+    dynamics_callbacks.on_step = [&](const DynamicsReport& report) {
+      if (callbacks_.on_dynamics_step) callbacks_.on_dynamics_step(report);
+      check();
+    };
+    dynamics_callbacks.stop = abandon ? &stop : callbacks_.stop;
     if (constrained_newton_ && options_.solver == DeploymentSolver::Newton) {
       const ConstrainedNewtonResult r =
           constrained_newton_->solve(average_target(s), newton_callbacks);
@@ -233,6 +252,13 @@ class Deployer {
       }
       return false;
     }
+    if (twin_) prefer_user_branch(s, step, a);
+    record(s, step, halvings, a, earlier_seconds + seconds_since(start));
+    return true;
+  }
+
+  // Appends an accepted step's row and reports it.
+  void record(double s, int step, int halvings, const Attempt& a, double seconds) {
     DeploymentStep row;
     row.step = step;
     row.fraction = s;
@@ -252,14 +278,19 @@ class Deployer {
     }
     row.gradient_measure = a.solve.gradient_measure;
     row.halvings = halvings;
-    row.seconds = earlier_seconds + seconds_since(start);
+    row.seconds = seconds;
     result_.steps.push_back(row);
     if (callbacks_.on_step) callbacks_.on_step(row);
-    return true;
   }
+
+  // The branch choice under loads (DeploymentOptions::follow_unloaded_twin).
+  void start_twin();
+  void prefer_user_branch(double s, int step, Attempt& a);
+  void end_twin();
 
   // The final state: the last accepted step's, or the start's.
   DeploymentResult finish(Clock::time_point start) {
+    if (twin_) end_twin();
     if (result_.steps.empty()) {
       result_.energy = problem_.energy().total();
       result_.gradient_measure = problem_.gradient_measure();
@@ -286,7 +317,96 @@ class Deployer {
   std::unique_ptr<NewtonSolver> newton_;
   DeploymentResult result_;
   std::string last_reason_;
+  std::unique_ptr<Twin> twin_;  // while the branch choice follows it
 };
+
+// The same problem and plan without the loads' component along the
+// buckling direction, deployed beside the loaded one without reporting its
+// steps (DeploymentOptions::follow_unloaded_twin).
+struct Twin {
+  Twin(const LinkageProblem& loaded, const DeploymentPlan& plan, const DeploymentOptions& options,
+       const DeploymentCallbacks& main)
+      : problem(loaded),
+        deployer(symmetric(problem, options.buckling_direction), plan, without_twin(options),
+                 quiet(main)) {}
+
+  static LinkageProblem& symmetric(LinkageProblem& p, const Eigen::Vector3d& direction) {
+    p.remove_loads_along(direction);
+    return p;
+  }
+  static DeploymentOptions without_twin(DeploymentOptions o) {
+    o.follow_unloaded_twin = false;
+    return o;
+  }
+  const DeploymentCallbacks& quiet(const DeploymentCallbacks& main) {
+    callbacks.stop = main.stop;
+    return callbacks;
+  }
+
+  LinkageProblem problem;
+  DeploymentCallbacks callbacks;  // the stop flag only
+  Deployer deployer;
+  // A mean displacement above this (1e-6 of the input's bounding-box
+  // diagonal) has left the symmetric state.
+  double threshold = 0.0;
+};
+
+Deployer::~Deployer() = default;
+
+void Deployer::start_twin() {
+  const bool escape = options_.solver == DeploymentSolver::Newton
+                          ? options_.newton.escape.enabled
+                          : options_.dynamics.escape.enabled;
+  if (!options_.follow_unloaded_twin || !escape) return;
+  if (!(problem_.load_along(options_.buckling_direction) < 0.0)) return;
+  twin_ = std::make_unique<Twin>(problem_, plan_, options_, callbacks_);
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& v : problem_.linkage().graph().vertices) box.extend(v);
+  twin_->threshold = 1e-6 * box.diagonal().norm();
+}
+
+// When this step's state lies on the loads' side: brings the twin to s and
+// solves the loaded problem from the twin's state, and a stable
+// equilibrium on the user's side replaces the step's (a and the state) and
+// ends the twin.
+void Deployer::prefer_user_branch(double s, int step, Attempt& a) {
+  const Eigen::Vector3d& direction = options_.buckling_direction;
+  // On the user's side already: the twin waits (a later advance catches up
+  // in one step, or ends it).
+  if (mean_displacement(problem_, direction) >= 0.0) return;
+  if (!twin_->deployer.advance(s, step, 0)) {
+    end_twin();  // no symmetric state to start from
+    return;
+  }
+  // Until the twin has left its symmetric state it has nothing to offer.
+  if (!(mean_displacement(twin_->problem, direction) > twin_->threshold)) return;
+  LinkageProblem kept = problem_;
+  problem_ = twin_->problem;
+  problem_.restore_loads();
+  Attempt b;
+  const auto heading_to_loads_side = [&] { return mean_displacement(problem_, direction) < 0.0; };
+  try {
+    b = solve(s, heading_to_loads_side);
+  } catch (const std::domain_error& e) {
+    b.solve.reason = e.what();
+  }
+  result_.iterations += b.solve.iterations;
+  result_.factorizations += b.solve.factorizations;
+  if (b.solve.converged() && b.solve.stable && mean_displacement(problem_, direction) > 0.0) {
+    a = std::move(b);
+    result_.branch_switch_step = step;
+    end_twin();
+    return;
+  }
+  problem_ = std::move(kept);
+}
+
+// The twin's work counts in the run's totals.
+void Deployer::end_twin() {
+  result_.iterations += twin_->deployer.result_.iterations;
+  result_.factorizations += twin_->deployer.result_.factorizations;
+  twin_.reset();
+}
 
 }  // namespace
 

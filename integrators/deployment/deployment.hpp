@@ -89,6 +89,20 @@ struct DeploymentOptions {
   // direction) on the side where the vertices' mean displacement along it
   // is positive.
   Eigen::Vector3d buckling_direction = Eigen::Vector3d::UnitZ();
+  // Loads that push against buckling_direction (gravity with the default
+  // +z) choose the side before the escape can: the linkage sags to their
+  // side and never meets a saddle. When this is on, the escape is on and
+  // the loads push against the direction, the deployment also follows its
+  // twin: the same problem without the loads' component along the
+  // direction, which leaves its symmetric state by the escape on the
+  // user's side. At every step whose state lies on the loads' side (the
+  // vertices' mean displacement along the direction below 0) the twin is
+  // brought to the same step (it waits while the state is on the user's
+  // side), and once it has left its symmetric state the loaded problem is
+  // solved again from the twin's state; the first stable equilibrium so found on the
+  // user's side replaces the step, the twin ends, and the continuation
+  // follows that branch (docs/model.md section 9.6).
+  bool follow_unloaded_twin = true;
 };
 
 // One accepted step: one row of deployment.csv.
@@ -129,6 +143,9 @@ struct DeploymentResult : SolveResult {
   DeploymentResult() { status = SolveStatus::StepFailed; }
   std::vector<DeploymentStep> steps;  // accepted steps, from step 0
   int failed_attempts = 0;
+  // The step at which the loaded branch on the user's side was taken from
+  // the unloaded twin (follow_unloaded_twin), -1 when none was.
+  int branch_switch_step = -1;
   double start_angle = 0.0;  // average opening angle before step 0
 };
 

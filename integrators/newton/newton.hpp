@@ -69,7 +69,7 @@ enum class LineSearch {
 
 struct NewtonOptions {
   double gradient_tolerance = 2e-8;  // converged when max_i |w_i g_i| <= this (dimensionless)
-  int max_iterations = 100;          // from the start, and again from each saddle left
+  int max_iterations = 300;          // from the start, and again from each saddle left
   // Largest step taken (2-norm, in the units of the unknowns); longer
   // Newton steps are scaled down (KINSetMaxNewtonStep, and the energy line
   // search). KINSOL's default (1000 |q0|) is meaningless for unknowns that

@@ -45,4 +45,14 @@ Eigen::VectorXd branch_bias(const LinkageProblem& problem, const Eigen::Vector3d
   return bias;
 }
 
+double mean_displacement(const LinkageProblem& problem, const Eigen::Vector3d& direction) {
+  const std::vector<Eigen::Vector3d> now = problem.vertex_positions();
+  const std::vector<Eigen::Vector3d>& input = problem.linkage().graph().vertices;
+  if (now.empty()) return 0.0;
+  const Eigen::Vector3d b = direction.normalized();
+  double sum = 0.0;
+  for (size_t v = 0; v < now.size(); ++v) sum += (now[v] - input[v]).dot(b);
+  return sum / static_cast<double>(now.size());
+}
+
 }  // namespace xshell

@@ -20,4 +20,8 @@ namespace xshell {
 // bias (problem.num_free()) for direction b (any length, not zero).
 Eigen::VectorXd branch_bias(const LinkageProblem& problem, const Eigen::Vector3d& direction);
 
+// The vertices' mean displacement from the input (the graph's vertices)
+// along the unit direction b: the side of the branch rule the state is on.
+double mean_displacement(const LinkageProblem& problem, const Eigen::Vector3d& direction);
+
 }  // namespace xshell

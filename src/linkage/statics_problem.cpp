@@ -64,6 +64,33 @@ EnergyReport LinkageProblem::energy_with(const RodEnergy& e) const {
   return report;
 }
 
+void LinkageProblem::remove_loads_along(const Eigen::Vector3d& direction) {
+  const Eigen::Vector3d b = direction.normalized();
+  const auto remove = [&b](auto&& f) { f -= f.dot(b) * b; };
+  restore_loads();
+  for (int s = 0; s < linkage_.num_segments(); ++s)
+    for (int n = 0; n < linkage_.segment(s).num_nodes(); ++n)
+      remove(segment_forces_[s].segment<3>(ElasticRod::node_dof(n)));
+  for (int j = 0; j < linkage_.num_joints(); ++j)
+    remove(point_forces_.segment<3>(linkage_.joint_dof_offset(j) + kPosition));
+}
+
+void LinkageProblem::restore_loads() {
+  segment_forces_ = given_segment_forces_;
+  point_forces_ = given_point_forces_;
+  ++version_;
+}
+
+double LinkageProblem::load_along(const Eigen::Vector3d& direction) const {
+  double sum = 0.0;
+  for (int s = 0; s < linkage_.num_segments(); ++s)
+    for (int n = 0; n < linkage_.segment(s).num_nodes(); ++n)
+      sum += given_segment_forces_[s].segment<3>(ElasticRod::node_dof(n)).dot(direction);
+  for (int j = 0; j < linkage_.num_joints(); ++j)
+    sum += given_point_forces_.segment<3>(linkage_.joint_dof_offset(j) + kPosition).dot(direction);
+  return sum;
+}
+
 Eigen::VectorXd LinkageProblem::full_gradient() const {
   if (gradient_version_ != version_) {
     if (!assembly_.matches(linkage_, free_position_))

@@ -160,6 +160,14 @@ class LinkageProblem {
   // ends), and on the reduced unknowns (forces at joints).
   const std::vector<Eigen::VectorXd>& segment_loads() const { return segment_forces_; }
   const Eigen::VectorXd& joint_loads() const { return point_forces_; }
+  // The dead loads without their component along a direction (the
+  // symmetric problem that the deployment's branch choice follows beside
+  // this one, integrators/deployment/deployment.hpp), and back as given.
+  void remove_loads_along(const Eigen::Vector3d& direction);
+  void restore_loads();
+  // Sum over the dead loads as given of f . direction (gravity, line loads
+  // and point forces): negative when they push against it.
+  double load_along(const Eigen::Vector3d& direction) const;
 
   double length_scale() const { return length_scale_; }
   double force_scale() const { return force_scale_; }
@@ -193,6 +201,8 @@ class LinkageProblem {
   Eigen::VectorXd point_forces_;                 // on reduced unknowns
   std::vector<char> has_segment_loads_;          // per segment: any nonzero load
   bool has_point_loads_ = false;
+  std::vector<Eigen::VectorXd> given_segment_forces_;  // the loads as given
+  Eigen::VectorXd given_point_forces_;
   Eigen::VectorXd input_dofs_;  // joint positions at the input (the rest is unused)
   double length_scale_ = 1.0, force_scale_ = 1.0;
   Eigen::SparseMatrix<double> hessian_;

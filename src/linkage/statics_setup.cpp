@@ -322,6 +322,8 @@ void LinkageProblem::set_loads(const StaticsSetup& setup) {
   }
   for (const Eigen::VectorXd& f : segment_forces_) has_segment_loads_.push_back(!f.isZero(0.0));
   has_point_loads_ = !point_forces_.isZero(0.0);
+  given_segment_forces_ = segment_forces_;
+  given_point_forces_ = point_forces_;
   // Point forces act on joint positions, which the input fixes: the
   // graph's vertices.
   input_dofs_ = Eigen::VectorXd::Zero(l.num_dofs());

@@ -85,6 +85,29 @@ void check_every_step_stable(const Deployed& d, size_t steps) {
   CHECK(unstable == 0);
 }
 
+// The largest distance between the two runs' final vertices (mm).
+double largest_vertex_distance(const Deployed& a, const Deployed& b) {
+  double largest = 0.0;
+  for (size_t v = 0; v < a.summary["vertices"].size(); ++v) {
+    double squared = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double d =
+          a.summary["vertices"][v][k].get<double>() - b.summary["vertices"][v][k].get<double>();
+      squared += d * d;
+    }
+    largest = std::max(largest, std::sqrt(squared));
+  }
+  return largest;
+}
+
+// Gravity along -z on steel laths (t/mm^3, mm/s^2): against the default
+// buckling direction.
+nlohmann::json with_gravity(nlohmann::json config) {
+  config["material"]["density"] = 7.85e-9;
+  config["loads"] = {{"gravity", {0, 0, -9810}}};
+  return config;
+}
+
 }  // namespace
 
 TEST_CASE("manta ray deployed to 93 degrees leaves the flat state up (or down when asked)" *
@@ -124,16 +147,7 @@ TEST_CASE("manta ray deployed by damped dynamics reaches Newton's branch" *
   REQUIRE(dynamics.summary["saddles_escaped"].size() == newton.summary["saddles_escaped"].size());
   CHECK(dynamics.summary["saddles_escaped"][0]["step"] ==
         newton.summary["saddles_escaped"][0]["step"]);
-  double largest = 0.0;  // vertex distance, mm
-  for (size_t v = 0; v < newton.summary["vertices"].size(); ++v) {
-    double squared = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      const double d = newton.summary["vertices"][v][k].get<double>() -
-                       dynamics.summary["vertices"][v][k].get<double>();
-      squared += d * d;
-    }
-    largest = std::max(largest, std::sqrt(squared));
-  }
+  const double largest = largest_vertex_distance(newton, dynamics);
   CHECK(largest < 1e-4);
   CHECK(dynamics.mean_z > 10.0);
   MESSAGE("manta ray to 93 deg, dynamics against Newton: largest vertex distance " << largest
@@ -157,16 +171,86 @@ TEST_CASE("darth vader opened at two joints to 2 rad leaves the flat state up an
           << up.mean_z << " mm; " << up.summary["iterations"] << " Newton iterations");
 }
 
+TEST_CASE("manta ray under gravity deployed to 93 degrees takes the branch the user chose" *
+          doctest::test_suite("validation")) {
+  if (!fs::exists(kData / "manta_ray_5ca2f7ab.obj"))
+    XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
+  const nlohmann::json deployment = {{"average_opening_angle", 93.0 * M_PI / 180.0}, {"steps", 20}};
+  const fs::path dir = temporary_directory("manta_gravity");
+  const Deployed up = deploy(dir, with_gravity(design_config("manta_ray_5ca2f7ab.obj", deployment,
+                                                             nlohmann::json::object())));
+  check_every_step_stable(up, 20);
+  CHECK(up.summary["deployment"]["branch_switch_step"].is_number_integer());
+  CHECK(up.mean_z > 10.0);  // mm: up, against gravity
+  const Deployed down =
+      deploy(dir, with_gravity(design_config("manta_ray_5ca2f7ab.obj", deployment,
+                                             {{"buckling_direction", {0, 0, -1}}})));
+  check_every_step_stable(down, 20);
+  CHECK(down.summary["deployment"]["branch_switch_step"].is_null());
+  CHECK(down.mean_z < -10.0);
+  // Gravity favours the lower branch.
+  CHECK(down.summary["energy"]["total"].get<double>() <
+        up.summary["energy"]["total"].get<double>());
+  MESSAGE("manta ray under gravity to 93 deg: mean z "
+          << up.mean_z << " mm up (switched at step "
+          << up.summary["deployment"]["branch_switch_step"] << "), " << down.mean_z << " mm down");
+}
+
+TEST_CASE("manta ray under gravity deployed by damped dynamics reaches Newton's branch" *
+          doctest::test_suite("validation")) {
+  if (!fs::exists(kData / "manta_ray_5ca2f7ab.obj"))
+    XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
+  const nlohmann::json deployment = {{"average_opening_angle", 93.0 * M_PI / 180.0}, {"steps", 20}};
+  const fs::path dir = temporary_directory("manta_gravity_dynamics");
+  const Deployed newton = deploy(
+      dir,
+      with_gravity(design_config("manta_ray_5ca2f7ab.obj", deployment, nlohmann::json::object())));
+  const Deployed dynamics = deploy(
+      dir,
+      with_gravity(design_config("manta_ray_5ca2f7ab.obj", deployment, {{"method", "dynamics"}})));
+  check_every_step_stable(dynamics, 20);
+  CHECK(dynamics.summary["deployment"]["branch_switch_step"] ==
+        newton.summary["deployment"]["branch_switch_step"]);
+  const double largest = largest_vertex_distance(newton, dynamics);
+  CHECK(largest < 1e-3);
+  CHECK(dynamics.mean_z > 10.0);
+  MESSAGE("manta ray under gravity, dynamics against Newton: largest vertex distance " << largest
+                                                                                       << " mm");
+}
+
+TEST_CASE("darth vader deployed to 115 degrees with and without gravity leaves the plane upwards" *
+          doctest::test_suite("validation")) {
+  if (!fs::exists(kData / "darth_vader_fig5_1693d9a2.obj"))
+    XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
+  const nlohmann::json deployment = {{"average_opening_angle", 115.0 * M_PI / 180.0},
+                                     {"steps", 20}};
+  const fs::path dir = temporary_directory("darth_average");
+  const nlohmann::json plain =
+      design_config("darth_vader_fig5_1693d9a2.obj", deployment, nlohmann::json::object());
+  const Deployed free = deploy(dir, plain);
+  check_every_step_stable(free, 20);
+  CHECK(free.summary["saddles_escaped"].size() >= 1);
+  CHECK(free.mean_z > 10.0);
+  const Deployed loaded = deploy(dir, with_gravity(plain));
+  check_every_step_stable(loaded, 20);
+  CHECK(loaded.summary["deployment"]["branch_switch_step"].is_number_integer());
+  CHECK(loaded.mean_z > 10.0);
+  MESSAGE("darth vader to 115 deg: mean z " << free.mean_z << " mm without gravity, "
+                                            << loaded.mean_z << " mm with");
+}
+
 // The largest design relaxed from flat (no supports: the centre joint
 // pinned) first converges to a flat saddle, then reaches a stable state from
-// which a deployment by +0.3 rad is stable at every step (n_s = 8; n_s = 10
-// in the README).
-TEST_CASE("largest design: relaxed past its flat saddle and then deployed by 0.3 rad" *
-          doctest::test_suite("validation")) {
+// which a deployment by +0.3 rad is stable at every step; with the default
+// settings (Newton's iteration limit included) at 8 and at 10 subdivisions.
+namespace {
+
+void relax_and_deploy_largest(int subdivisions) {
   if (!fs::exists(kData / "large_6d35a972.obj")) XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
   const fs::path dir = temporary_directory("largest_saddle");
   nlohmann::json config = design_config("large_6d35a972.obj", nullptr, nlohmann::json::object());
   config.erase("deployment");
+  config["subdivisions"] = subdivisions;
   write_text(dir / "relax.json", config.dump(2));
   const CommandResult relaxed = run_xshell("relax relax.json --out relaxed", dir);
   CAPTURE(relaxed.errors);
@@ -191,9 +275,22 @@ TEST_CASE("largest design: relaxed past its flat saddle and then deployed by 0.3
   d.summary = read_json(dir / "deployed" / "summary.json");
   d.stable = stable_column(dir / "deployed" / "deployment.csv");
   check_every_step_stable(d, 10);
-  MESSAGE("largest design, n_s = 8: saddle " << s["saddles_escaped"][0]["energy"] << ", stable "
-                                             << s["energy"]["total"] << " after " << s["iterations"]
-                                             << " iterations");
+  MESSAGE("largest design, n_s = "
+          << subdivisions << ": saddle " << s["saddles_escaped"][0]["energy"] << ", stable "
+          << s["energy"]["total"] << " after " << s["iterations"] << " iterations");
+}
+
+}  // namespace
+
+TEST_CASE("largest design: relaxed past its flat saddle and then deployed by 0.3 rad" *
+          doctest::test_suite("validation")) {
+  relax_and_deploy_largest(8);
+}
+
+TEST_CASE(
+    "largest design at 10 subdivisions: relaxed past its flat saddle and deployed by 0.3 rad" *
+    doctest::test_suite("validation")) {
+  relax_and_deploy_largest(10);
 }
 
 }  // namespace xshell::test

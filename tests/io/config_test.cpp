@@ -107,7 +107,7 @@ TEST_CASE("config: defaults are filled in") {
   CHECK(c.loads.forces.empty());
   CHECK(c.solver.method == SolverMethod::Newton);
   CHECK(c.solver.gradient_tolerance == 1e-6);
-  CHECK(c.solver.max_iterations == 100);
+  CHECK(c.solver.max_iterations == 300);
   CHECK(c.solver.mass == MassSetting::Physical);
   CHECK_FALSE(c.solver.damping.has_value());
   CHECK_FALSE(c.solver.first_order);
