@@ -1,6 +1,8 @@
 #include "command_line.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include "exit_status.hpp"
@@ -34,6 +36,18 @@ const CLI::Validator kNonEmptyPath(
     },
     "PATH", "non-empty path");
 
+// CLI::Range lets NaN through (every comparison with it is false): `--grace
+// nan` was accepted and acted as 0. Checked before the range.
+const CLI::Validator kFiniteNumber(
+    [](std::string& value) {
+      char* end = nullptr;
+      const double number = std::strtod(value.c_str(), &end);
+      return end != value.c_str() && !std::isfinite(number)
+                 ? "must be a finite number, got '" + value + "'"
+                 : std::string();
+    },
+    "FINITE", "finite number");
+
 // The subcommands' options, filled into `line`.
 struct Subcommands {
   CLI::App* relax = nullptr;
@@ -57,6 +71,7 @@ Subcommands add_subcommands(CLI::App& app, CommandLine& line) {
   s.relax
       ->add_option("--grace", relax.grace,
                    "Seconds an iteration may go on after SIGINT/SIGTERM (default 10)")
+      ->check(kFiniteNumber)
       ->check(CLI::Range(0.0, 86400.0));
   s.relax->add_flag("--quiet", relax.quiet, "No progress lines");
   s.relax->add_flag("--verbose", relax.verbose,
