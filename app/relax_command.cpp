@@ -80,8 +80,8 @@ const char* method_name(SolverMethod m) {
 class Outputs {
  public:
   Outputs(const fs::path& dir, const Config& config, const LinkageProblem& problem,
-          const Eigen::Vector3d& origin, StaticsSetup statics)
-      : dir_(dir), problem_(problem), origin_(origin), statics_(std::move(statics)) {
+          const Eigen::Vector3d& origin)
+      : dir_(dir), problem_(problem), origin_(origin) {
     SeriesOptions options;
     options.every = config.output.every;
     options.format =
@@ -100,8 +100,15 @@ class Outputs {
     try {
       if (series_->write(linkage_snapshot(problem_.linkage(), origin_, time), force)) {
         last_time_ = time;
+        // For save_last_written(), with what its summary reports: computed
+        // here from the live problem, because a LinkageProblem built there
+        // (its Hessian pattern included) took seconds on large linkages,
+        // after the grace period (6.7 s at 1,371 joints, 10 edges per
+        // segment, on a loaded machine).
+        LastWritten written{problem_.linkage(), problem_.energy(), problem_.vertex_positions(),
+                            problem_.opening_angles()};
         const std::lock_guard<std::mutex> lock(last_written_mutex_);
-        last_written_.emplace(problem_.linkage());  // for save_last_written()
+        last_written_.emplace(std::move(written));
       }
       if (series_->thinnings() > warned_thinnings_) {  // once per thinning: a few lines at most
         warned_thinnings_ = series_->thinnings();
@@ -138,12 +145,11 @@ class Outputs {
     started.reason = reason;
     started.interrupted = true;
     try {
-      const LinkageProblem problem(*last_written_, statics_);
-      started.energy = problem.energy();
-      started.vertices = problem.vertex_positions();
+      started.energy = last_written_->energy;
+      started.vertices = last_written_->vertices;
       for (auto& v : started.vertices) v += origin_;
-      started.opening_angles = problem.opening_angles();
-      write_state((dir_ / "state.json").string(), *last_written_, origin_);
+      started.opening_angles = last_written_->opening_angles;
+      write_state((dir_ / "state.json").string(), last_written_->linkage, origin_);
       write_summary((dir_ / "summary.json").string(), started);
     } catch (const std::exception& e) {
       std::cerr << "xshell: error: " << e.what() << "\n";
@@ -162,9 +168,15 @@ class Outputs {
   std::optional<VtkSeries> series_;
   double last_time_ = -1.0;
   int max_steps_ = 0;  // output.max_steps
+  // The last written step: its linkage and what a summary says of it.
+  struct LastWritten {
+    RodLinkage linkage;
+    EnergyReport energy;
+    std::vector<Eigen::Vector3d> vertices;  // without the origin
+    std::vector<std::optional<double>> opening_angles;
+  };
   std::mutex last_written_mutex_;
-  std::optional<RodLinkage> last_written_;  // the linkage at the last written step
-  StaticsSetup statics_;                    // its supports and loads
+  std::optional<LastWritten> last_written_;
   int warned_thinnings_ = 0;
   std::string error_;
 };
@@ -475,8 +487,7 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
     return kExitOutputFailed;
   }
   try {
-    outputs.emplace(run.config.output.directory, run.config, *run.problem, run.setup.origin,
-                    run.setup.statics);
+    outputs.emplace(run.config.output.directory, run.config, *run.problem, run.setup.origin);
   } catch (const std::exception& e) {
     std::cerr << "xshell: error: cannot write the output directory: " << e.what() << "\n";
     return kExitOutputFailed;

@@ -1,27 +1,34 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets of the OBJ, configuration and state readers with
+# Builds the libFuzzer targets of the OBJ, configuration and state readers and
+# of the command line (argument vectors, split on NUL and newline) with
 # clang (and ASan/UBSan) into build-fuzz/ and runs each for a bounded time
-# (FUZZ_SECONDS, default 60) from the corpora in fuzz/corpus (new inputs go
+# (FUZZ_SECONDS, default 60; the command line, a small grammar, half of it)
+# from the corpora in fuzz/corpus (new inputs go
 # to build-fuzz/corpus-*, the repository's corpora stay as they are). Any
 # finding fails the script: a crash, a sanitizer report, an exception other
-# than InputError, a leak, or one input taking more than 10 s (a hang).
+# than InputError, a leak, or one input taking more than 10 s (a hang); for
+# the command line also a usage error not on one "xshell: error: ..." line,
+# or a command chosen with unusable arguments.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 seconds="${FUZZ_SECONDS:-60}"
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DXSHELL_FUZZ=ON \
   -DXSHELL_BUILD_TESTS=OFF >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target fuzz_obj_reader fuzz_config_reader fuzz_state_reader
+cmake --build build-fuzz -j"$(nproc)" --target fuzz_obj_reader fuzz_config_reader fuzz_state_reader \
+  fuzz_command_line
 export ASAN_OPTIONS=halt_on_error=1:abort_on_error=1:detect_leaks=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 status=0
-for target in obj_reader:obj config_reader:config state_reader:state; do
+for target in obj_reader:obj config_reader:config state_reader:state command_line:command_line; do
   name="${target%%:*}"; corpus="${target##*:}"
   work="build-fuzz/corpus-$corpus"
   log="build-fuzz/fuzz_$name.log"
   mkdir -p "$work"
-  echo "fuzzing $name for $seconds s (log: $log)"
-  if ./build-fuzz/fuzz/fuzz_"$name" -max_total_time="$seconds" -max_len=4096 -timeout=10 \
+  run_seconds="$seconds"
+  [ "$name" = command_line ] && run_seconds=$(( (seconds + 1) / 2 ))
+  echo "fuzzing $name for $run_seconds s (log: $log)"
+  if ./build-fuzz/fuzz/fuzz_"$name" -max_total_time="$run_seconds" -max_len=4096 -timeout=10 \
       -artifact_prefix=build-fuzz/"$name"- "$work" "fuzz/corpus/$corpus" >"$log" 2>&1; then
     tail -n 2 "$log"
   else

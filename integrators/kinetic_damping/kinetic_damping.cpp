@@ -59,6 +59,7 @@ class KineticDampingRun {
   enum class StepOutcome { Accepted, Rejected, Finished };
 
   bool iterate();
+  bool stopped_by_watches(long iteration);
   StepOutcome take_step(long iteration, const Eigen::VectorXd& next_velocity,
                         const Eigen::VectorXd& step, double next_energy, std::string& failure);
   void reset_at_peak(double ke, Eigen::VectorXd& next_q, double& accepted_energy);
@@ -95,8 +96,9 @@ class KineticDampingRun {
   long last_refresh = 0;  // iteration of the last mass refresh
   long last_rise = std::numeric_limits<long>::min() / 2;  // iteration of the last energy rise
   long since_rebase = 0;                                  // iterations since the last rebase
-  int rejected_since_peak = 0;         // rejected steps since the last kinetic-energy peak
-  std::optional<ProgressWatch> watch;  // divergence and stagnation, from the start
+  int rejected_since_peak = 0;                  // rejected steps since the last kinetic-energy peak
+  std::optional<ProgressWatch> watch;           // windows of progress_watch.hpp (off by default)
+  std::optional<KineticDampingWatch> kd_watch;  // divergence and stagnation, from the start
 };
 
 KineticDampingRun::KineticDampingRun(Objective& target, const KineticDampingOptions& run_options,
@@ -113,6 +115,7 @@ KineticDampingRun::KineticDampingRun(Objective& target, const KineticDampingOpti
   report.energy = energy;
   report.gradient_measure = weighted_max_norm(weights, gradient);
   if (options.progress.window > 0) watch.emplace(energy, report.gradient_measure, options.progress);
+  kd_watch.emplace(energy, report.gradient_measure, options.watch);
   velocity = Eigen::VectorXd::Zero(q.size());
   energy_at_reset = energy;
   safety = options.mass_safety;
@@ -168,15 +171,28 @@ bool KineticDampingRun::iterate() {
     finish(SolveStatus::Converged, "gradient and kinetic energy below tolerance");
     return false;
   }
+  return !stopped_by_watches(iteration);
+}
+
+// Whether a watch found the run diverging or stagnating (then finished).
+bool KineticDampingRun::stopped_by_watches(long iteration) {
+  const KineticDampingProgress verdict =
+      kd_watch->observe(iteration, energy, report.gradient_measure, report.kinetic_energy);
+  if (verdict != KineticDampingProgress::Continuing) {
+    finish(verdict == KineticDampingProgress::Diverging ? SolveStatus::Diverged
+                                                        : SolveStatus::IntegratorFailed,
+           kd_watch->reason());
+    return true;
+  }
   const Progress progress =
       watch ? watch->observe(energy, report.gradient_measure, report.kinetic_energy)
             : Progress::Continuing;
   if (progress != Progress::Continuing) {
     finish(progress == Progress::Diverging ? SolveStatus::Diverged : SolveStatus::IntegratorFailed,
            watch->reason());
-    return false;
+    return true;
   }
-  return true;
+  return false;
 }
 
 // The leapfrog step to q + step (energy next_energy, finite) is taken:

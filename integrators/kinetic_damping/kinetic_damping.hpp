@@ -52,6 +52,7 @@
 #include "integrators/common/objective.hpp"
 #include "integrators/common/progress_watch.hpp"
 #include "integrators/common/solve_result.hpp"
+#include "integrators/kinetic_damping/kinetic_damping_watch.hpp"
 
 namespace xshell {
 
@@ -121,11 +122,16 @@ struct KineticDampingOptions {
   // masses, so a state pressed against an invalid region creeps towards it
   // with ever shorter steps).
   int max_rejected_steps = 30;
-  // Stops a run that stagnates (no progress beyond round-off) over windows
-  // of iterations: IntegratorFailed. Off by default (window 0): on real
-  // linkages (uniform_linkage, sphere_open) kinetic damping near a 1e-8
-  // tolerance stays 20,000 iterations without halving its gradient and then
-  // converges. E.g. {2000, 1e-12, 10, false}.
+  // Stops a run that stagnates at the round-off floor of the gradient
+  // (IntegratorFailed, reason "stagnation: ...") or that accelerates away
+  // from the best state it found (Diverged, reason "diverging: ..."):
+  // kinetic_damping_watch.hpp. On by default.
+  KineticDampingWatchOptions watch;
+  // The windows of progress_watch.hpp, as damped dynamics uses them: off by
+  // default (window 0), because on real linkages (uniform_linkage,
+  // sphere_open) kinetic damping near a 1e-8 tolerance stays 20,000
+  // iterations without halving its gradient and then converges: `watch`
+  // tells stagnation apart. E.g. {2000, 1e-12, 10, false}.
   ProgressWatchOptions progress = {0, 1e-12, 10, false};
 };
 
@@ -152,7 +158,7 @@ struct KineticDampingCallbacks {
 // iterations counts leapfrog steps; InvalidConfiguration: steps kept
 // leaving the valid configurations, even with heavier masses; NonFinite
 // also when steps kept producing NaN/inf; Diverged and IntegratorFailed
-// (stagnation) as options.progress says. factorizations: the stability
+// (stagnation) as options.watch (and options.progress, when on) say. factorizations: the stability
 // check only.
 struct KineticDampingResult : SolveResult {
   long resets = 0;          // kinetic-energy peaks

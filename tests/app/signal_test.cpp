@@ -221,6 +221,20 @@ TEST_CASE("interrupt: --grace out of range is a usage error") {
   const CommandResult r = run_xshell("relax run.json --grace -1", dir.path());
   CHECK(r.status == 2);
   CHECK(r.errors.rfind("xshell: error: relax: --grace", 0) == 0);
+  // NaN passes a range check (every comparison is false): before, it was
+  // accepted and acted as --grace 0.
+  for (const char* value : {"nan", "NaN", "-nan"}) {
+    CAPTURE(value);
+    // A configuration that does not exist: the usage error comes first
+    // (before the fix, the run failed on the missing file instead).
+    const CommandResult nan =
+        run_xshell(std::string("relax missing.json --grace ") + value, dir.path());
+    CHECK(nan.status == 2);
+    CHECK(nan.errors.rfind("xshell: error: relax: --grace", 0) == 0);
+    CHECK(contains(nan.errors, "must be a finite number"));
+    CHECK(count_lines(nan.errors) == 1);
+    CHECK_FALSE(fs::exists(dir / "out"));
+  }
 }
 
 }  // namespace xshell::test

@@ -250,7 +250,14 @@ void benchmark(const std::string& name, const std::function<LinkageProblem()>& m
     const Timing kd = {r.iterations, r.seconds, cpu_seconds_since(cpu), r.gradient_measure,
                        r.converged()};
     INFO(name << ": kinetic damping: " << r.reason);
-    CHECK((r.converged() || r.status == SolveStatus::Interrupted));
+    // Where the round-off floor of the gradient sits at the tolerance
+    // (uniform_linkage with row sums: Newton stops at 1.4e-8, dynamics at
+    // 2.2e-8, kinetic damping reaches 1.003e-8), kinetic damping stops on
+    // stagnation near it (before: it ran until kd_seconds).
+    const bool at_floor = r.status == SolveStatus::IntegratorFailed &&
+                          r.reason.rfind("stagnation: ", 0) == 0 && newton.measure > tolerance &&
+                          r.gradient_measure <= 10.0 * tolerance;
+    CHECK((r.converged() || r.status == SolveStatus::Interrupted || at_floor));
     if (r.converged()) {
       CHECK((stacked_positions(problem) - x_newton).norm() < 1e-6 * (x_newton - x_input).norm());
       CHECK(energy_difference(problem.energy().total(), e_newton, e_start) < 1e-7);
