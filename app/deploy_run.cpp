@@ -100,7 +100,7 @@ class DeploymentRecorder {
     solving_ = s.step + 1;
     table_ += table_row(s);
     try {
-      write_file_atomically(dir_ / kTable, table_);
+      if (!dir_.empty()) write_file_atomically(dir_ / kTable, table_);
     } catch (const std::exception& e) {
       if (output_error_.empty()) output_error_ = e.what();
     }
@@ -161,6 +161,7 @@ DeploymentSummary deployment_summary(const Deployment& d, const DeploymentResult
 
 // deployment.png from deployment.csv, when there is a table to plot.
 void write_plot(const fs::path& dir, bool has_table, DeploymentSummary& ds) {
+  if (dir.empty()) return;  // a run that writes no files
   std::error_code ignored;
   fs::remove(dir / kPlot, ignored);  // never leave an earlier run's plot behind
   if (!has_table) return;
