@@ -156,3 +156,32 @@ def test_python_m_xshell_relax(sample_config, tmp_path):
     )
     assert done.returncode == 0, done.stderr
     assert read_summary(tmp_path)["status"] == "converged"
+
+
+def test_a_deployment_as_the_command_line_runs_it(program, tmp_path):
+    """The deployment's files too (deployment.csv, deployment.png); without
+    files, the same summary but for the plot."""
+    with open(SAMPLES / "grid_gravity.json") as f:
+        cfg = json.load(f)
+    cfg["linkage"] = str(SAMPLES / cfg["linkage"])
+    start = np.nanmean(xshell.Linkage(cfg).opening_angles)
+    cfg["deployment"] = {"average_opening_angle": start + 0.05, "steps": 2}
+    (tmp_path / "deploy.json").write_text(json.dumps(cfg))
+    status, err = run_program(
+        program, "relax", tmp_path / "deploy.json", "--out", tmp_path / "cli", "--quiet"
+    )
+    assert status == 0, err
+    res = xshell.relax(tmp_path / "deploy.json", out=tmp_path / "py")
+    cli_files = sorted(p for p in os.listdir(tmp_path / "cli") if not p.startswith("."))
+    py_files = sorted(p for p in os.listdir(tmp_path / "py") if not p.startswith("."))
+    assert py_files == cli_files and "deployment.csv" in py_files
+    assert (tmp_path / "py" / "deployment.csv").read_text() == (
+        tmp_path / "cli" / "deployment.csv"
+    ).read_text()
+    summary = read_summary(tmp_path / "cli")
+    assert_same_run(res, summary)
+    assert res.summary["deployment"] == summary["deployment"]
+    no_files = xshell.relax(tmp_path / "deploy.json")
+    assert_same_run(no_files, summary)
+    expected = dict(summary["deployment"], plot=None)
+    assert no_files.summary["deployment"] == expected
