@@ -187,6 +187,7 @@ SolverRun solve(LoadedRun& run, const RelaxHooks& hooks, RunOutputs* outputs, Ru
   run_hooks.stop = &halt;
   run_hooks.history = &summary.history;
   run_hooks.progress = progress_enabled(hooks.progress, run.config);
+  run_hooks.messages = hooks.log != nullptr;
   run_hooks.warn = [&](const std::string& text) {
     warn(run, text);
     summary.warnings.push_back(text);

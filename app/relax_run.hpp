@@ -58,7 +58,8 @@ struct RelaxHooks {
   // Progress lines on stderr: On, Off, or Auto: as the configuration's
   // output.progress says (its "auto": when stderr is a terminal).
   Toggle progress = Toggle::Off;
-  std::ostream* log = nullptr;  // "xshell: ..." lines (warnings, the default pin), or none
+  // "xshell: ..." lines (warnings, the default pin, a deployment's outcome), or none.
+  std::ostream* log = nullptr;
 };
 
 // A configuration read and its problem built: what a run starts from.
