@@ -9,6 +9,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -25,7 +26,7 @@ namespace {
 
 class Linkage {
  public:
-  Linkage(const RelaxRequest& request) {
+  explicit Linkage(const RelaxRequest& request) {
     try {
       load_run(request, run_);
     } catch (const InputError& e) {
@@ -109,12 +110,19 @@ void bind_linkage(py::module_& m) {
            py::arg("init_text"))
       .def_property_readonly("dofs", &Linkage::dofs)
       .def("set_dofs", &Linkage::set_dofs, py::arg("q"))
-      .def("energy", [](Linkage& l) { return l.problem().energy().total(); })
+      // The evaluations release the GIL (other threads run meanwhile).
+      .def(
+          "energy", [](Linkage& l) { return l.problem().energy().total(); },
+          py::call_guard<py::gil_scoped_release>())
       .def("energy_terms", &Linkage::energy_terms)
-      .def("gradient", [](Linkage& l) { return l.problem().full_gradient(); })
-      .def("hessian", &Linkage::hessian)
+      .def(
+          "gradient", [](Linkage& l) { return l.problem().full_gradient(); },
+          py::call_guard<py::gil_scoped_release>())
+      .def("hessian", &Linkage::hessian, py::call_guard<py::gil_scoped_release>())
       .def_property_readonly("free", &Linkage::free)
-      .def("update_frames", [](Linkage& l) { l.problem().rebase(); })
+      .def(
+          "update_frames", [](Linkage& l) { l.problem().rebase(); },
+          py::call_guard<py::gil_scoped_release>())
       .def_property_readonly("vertices", &Linkage::vertices)
       .def_property_readonly("opening_angles", &Linkage::opening_angles)
       .def_property_readonly("state", &Linkage::state)

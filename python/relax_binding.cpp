@@ -11,6 +11,7 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <exception>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -53,6 +54,7 @@ py::tuple run(const RelaxRequest& request, const std::optional<py::function>& pr
   const bool main_thread = threading.attr("current_thread")().is(threading.attr("main_thread")());
   std::atomic<bool> stop{false};
   std::optional<py::error_already_set> pending;  // raised after the run (held with the GIL)
+  std::exception_ptr failure;                    // the same, of another kind
   RelaxHooks hooks;
   hooks.stop = &stop;
   hooks.progress = parse_progress(lines);
@@ -67,6 +69,9 @@ py::tuple run(const RelaxRequest& request, const std::optional<py::function>& pr
     } catch (py::error_already_set& e) {
       pending.emplace(std::move(e));
       stop = true;
+    } catch (...) {  // nothing may cross the solvers' C callbacks
+      failure = std::current_exception();
+      stop = true;
     }
   };
   RelaxOutcome outcome;
@@ -79,6 +84,7 @@ py::tuple run(const RelaxRequest& request, const std::optional<py::function>& pr
     pending.reset();
     throw py::error_already_set();
   }
+  if (failure) std::rethrow_exception(failure);
   py::object summary = py::none();
   if (outcome.summary) summary = py::str(to_json(*outcome.summary).dump());
   return py::make_tuple(outcome.exit_status, outcome.error, summary, outcome.state);
