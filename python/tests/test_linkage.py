@@ -158,15 +158,3 @@ def test_gradient_vanishes_at_the_equilibrium_on_the_free_unknowns():
     assert lk.energy() == pytest.approx(res.energy["total"], rel=1e-12)
     assert np.abs(g[lk.free]).max() < 1e-6 * np.abs(g[~lk.free]).max()
 
-
-def test_real_design_derivatives(shared_data):
-    """A non-planar design with valence-3 joints (shared data)."""
-    cfg = sample_dict(supports=[{"vertex": 0, "fix": ["position", "orientation"]}])
-    cfg["linkage"] = str(shared_data / "hyperboloid_open.obj")
-    cfg["material"]["young_modulus"] = 1.0e3
-    cfg["material"]["cross_section"] = {"shape": "rectangle", "width": 0.05, "height": 0.03}
-    cfg["loads"] = {"gravity": [0, 0, -9.81]}
-    lk = xshell.Linkage(cfg)
-    rng = random_state(lk, 4)
-    assert gradient_errors(lk, lk.gradient(), rng).max() < GRADIENT_TOLERANCE
-    assert hessian_errors(lk, lk.hessian(), rng).max() < HESSIAN_TOLERANCE
