@@ -100,7 +100,7 @@ class DeploymentRecorder {
     solving_ = s.step + 1;
     table_ += table_row(s);
     try {
-      write_file_atomically(dir_ / kTable, table_);
+      if (!dir_.empty()) write_file_atomically(dir_ / kTable, table_);
     } catch (const std::exception& e) {
       if (output_error_.empty()) output_error_ = e.what();
     }
@@ -161,14 +161,15 @@ DeploymentSummary deployment_summary(const Deployment& d, const DeploymentResult
 }
 
 // deployment.png from deployment.csv, when there is a table to plot.
-void write_plot(const fs::path& dir, bool has_table, DeploymentSummary& ds) {
+void write_plot(const fs::path& dir, bool has_table, bool messages, DeploymentSummary& ds) {
+  if (dir.empty()) return;  // a run that writes no files
   std::error_code ignored;
   fs::remove(dir / kPlot, ignored);  // never leave an earlier run's plot behind
   if (!has_table) return;
   const PlotOutcome plot = plot_deployment(dir / kTable, dir / kPlot);
   if (plot.written)
     ds.plot = kPlot;
-  else
+  else if (messages)
     std::cerr << "xshell: " << kPlot << " skipped: " << plot.message << "\n";
 }
 
@@ -233,13 +234,14 @@ SolverRun run_deployment(const Config& config, LinkageProblem& problem, const fs
   if (result.status == SolveStatus::Interrupted && !run.output_error.empty())
     run.result.status = SolveStatus::StepFailed;
   DeploymentSummary ds = deployment_summary(d, result, problem);
-  write_plot(dir, !result.steps.empty() && run.output_error.empty(), ds);
-  std::fprintf(
-      stderr,
-      "xshell: deployment %s: %d steps (%d retried), average opening angle %.6f rad (%.3f deg), "
-      "torque %.6e, %ld iterations, %.2f s\n",
-      ds.status.c_str(), ds.steps, ds.failed_attempts, ds.final_average_angle,
-      ds.final_average_angle * 180.0 / M_PI, ds.final_torque, ds.iterations, result.seconds);
+  write_plot(dir, !result.steps.empty() && run.output_error.empty(), hooks.messages, ds);
+  if (hooks.messages)
+    std::fprintf(
+        stderr,
+        "xshell: deployment %s: %d steps (%d retried), average opening angle %.6f rad (%.3f deg), "
+        "torque %.6e, %ld iterations, %.2f s\n",
+        ds.status.c_str(), ds.steps, ds.failed_attempts, ds.final_average_angle,
+        ds.final_average_angle * 180.0 / M_PI, ds.final_torque, ds.iterations, result.seconds);
   run.deployment = ds;
   return run;
 }

@@ -37,7 +37,8 @@ void prepare_deployment(const Config& config, std::optional<LinkageProblem>& pro
                         StaticsSetup statics);
 
 // Runs config.deployment on `problem` (readied by prepare_deployment),
-// writing deployment.csv and deployment.png into `dir` and a VTK step per
+// writing deployment.csv and deployment.png into `dir` (none when `dir` is
+// empty: a run that writes no files) and a VTK step per
 // accepted step through hooks.snapshot. The result's status is the summary's
 // ("converged" when every step converged), its reason "deployment
 // <completed|step failed|interrupted>: ..."; the run's deployment object is

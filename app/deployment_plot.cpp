@@ -1,5 +1,6 @@
 #include "deployment_plot.hpp"
 
+#include <dlfcn.h>
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -54,15 +55,20 @@ std::string find_python() {
 }
 
 // plot_deployment.py beside this program (the build tree) or in
-// ../share/xshell (an installation), or "" when neither exists.
+// ../share/xshell (an installation), or beside the shared object this code
+// is part of (the Python module, build/python/xshell); "" when none exists.
 fs::path find_script() {
   std::error_code error;
+  std::vector<fs::path> folders;
   const fs::path program = fs::read_symlink("/proc/self/exe", error);
-  if (error) return {};
-  for (const fs::path& candidate :
-       {program.parent_path() / "plot_deployment.py",
-        program.parent_path().parent_path() / "share" / "xshell" / "plot_deployment.py"})
-    if (fs::is_regular_file(candidate, error)) return candidate;
+  if (!error)
+    folders = {program.parent_path(), program.parent_path().parent_path() / "share" / "xshell"};
+  Dl_info info;
+  if (dladdr(reinterpret_cast<void*>(&plot_deployment), &info) != 0 && info.dli_fname)
+    folders.push_back(fs::path(info.dli_fname).parent_path());
+  for (const fs::path& folder : folders)
+    if (fs::is_regular_file(folder / "plot_deployment.py", error))
+      return folder / "plot_deployment.py";
   return {};
 }
 

@@ -1,8 +1,9 @@
 // deployment.png: energy and torque of a deployment against the average
 // opening angle, drawn from deployment.csv by the matplotlib script
 // plot_deployment.py, run as a child process with an argument vector (no
-// shell). The build copies the script beside the xshell program; an
-// installed program finds it in ../share/xshell. Optional: when no python3
+// shell). The build copies the script beside the xshell program (and beside
+// the Python module's shared object); an installed program finds it in
+// ../share/xshell. Optional: when no python3
 // with matplotlib is found (Debian: python3-matplotlib), or the script is
 // missing, the plot is skipped with a message.
 #pragma once

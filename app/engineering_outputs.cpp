@@ -7,9 +7,8 @@
 
 namespace xshell {
 
-void write_engineering_results(LinkageProblem& problem, const Config& config,
-                               const Eigen::Vector3d& origin,
-                               const std::filesystem::path& directory, RunSummary& summary) {
+EngineeringSnapshot engineering_results(LinkageProblem& problem, const Config& config,
+                                        const Eigen::Vector3d& origin, RunSummary& summary) {
   EngineeringResults results;
   results.reactions = support_reactions(problem);
   results.stresses = linkage_stresses(problem.linkage());
@@ -37,6 +36,13 @@ void write_engineering_results(LinkageProblem& problem, const Config& config,
   if (stability.buckling.status == BucklingStatus::Found)
     snapshot.modes.push_back(
         {"buckling_mode", node_displacements(problem, stability.buckling.mode)});
+  return snapshot;
+}
+
+void write_engineering_results(LinkageProblem& problem, const Config& config,
+                               const Eigen::Vector3d& origin,
+                               const std::filesystem::path& directory, RunSummary& summary) {
+  const EngineeringSnapshot snapshot = engineering_results(problem, config, origin, summary);
   const WriteOptions format{config.output.format == OutputFormat::Ascii ? VtkFormat::Ascii
                                                                         : VtkFormat::Binary};
   write_reactions_file(snapshot, directory / "reactions.vtp", format);

@@ -11,12 +11,19 @@
 
 #include "io/config.hpp"
 #include "io/summary_file.hpp"
+#include "io/vtk/engineering_snapshot.hpp"
 #include "linkage/statics_problem.hpp"
 
 namespace xshell {
 
-// problem: at its final (converged) state. origin: added to positions.
-// Throws OutputError when a file cannot be written.
+// Computes them into summary.engineering, writing no file; returns what the
+// VTK files of write_engineering_results show. problem: at its final
+// (converged) state. origin: added to positions.
+EngineeringSnapshot engineering_results(LinkageProblem& problem, const Config& config,
+                                        const Eigen::Vector3d& origin, RunSummary& summary);
+
+// The same, and the VTK files into `directory`. Throws OutputError when a
+// file cannot be written.
 void write_engineering_results(LinkageProblem& problem, const Config& config,
                                const Eigen::Vector3d& origin,
                                const std::filesystem::path& directory, RunSummary& summary);

@@ -30,6 +30,7 @@ struct RunHooks {
   const std::atomic<bool>* stop = nullptr;          // the solvers stop once it is raised
   std::vector<IterationRecord>* history = nullptr;  // the summary's history
   bool progress = false;                            // progress lines on stderr
+  bool messages = true;  // the run's other lines on stderr (a deployment's outcome, a skipped plot)
   // Says a warning (without the "xshell: warning: " prefix) on stderr and
   // keeps it for the summary's warnings.
   std::function<void(const std::string&)> warn;

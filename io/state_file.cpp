@@ -69,8 +69,7 @@ std::string graph_hash(const LineGraph& graph) {
   return buffer;
 }
 
-void write_state(const std::string& path, const RodLinkage& linkage,
-                 const Eigen::Vector3d& origin) {
+std::string state_text(const RodLinkage& linkage, const Eigen::Vector3d& origin) {
   const LinkageState state = linkage.state();
   json segments = json::array();
   for (const SegmentState& s : state.segments) {
@@ -99,7 +98,12 @@ void write_state(const std::string& path, const RodLinkage& linkage,
                     {"joint_kind", joint_kind_name(linkage.options().joint_kind)},
                     {"segments", segments},
                     {"joints", joints}};
-  write_file_atomically(path, doc.dump() + "\n");
+  return doc.dump() + "\n";
+}
+
+void write_state(const std::string& path, const RodLinkage& linkage,
+                 const Eigen::Vector3d& origin) {
+  write_file_atomically(path, state_text(linkage, origin));
 }
 
 namespace {

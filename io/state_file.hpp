@@ -29,6 +29,9 @@ namespace xshell {
 // Hex fingerprint of the linkage's graph (topology and coordinates).
 std::string graph_hash(const LineGraph& graph);
 
+// The text of state.json (the layout above).
+std::string state_text(const RodLinkage& linkage, const Eigen::Vector3d& origin);
+
 // Writes the state atomically; throws OutputError.
 void write_state(const std::string& path, const RodLinkage& linkage, const Eigen::Vector3d& origin);
 

@@ -10,6 +10,8 @@ packages=(
   xvfb xauth
   clang libclang-rt-14-dev
   python3-matplotlib
+  python3-dev pybind11-dev python3-numpy python3-scipy python3-pytest
+  python3-distributed python3-dask
 )
 missing=()
 for p in "${packages[@]}"; do

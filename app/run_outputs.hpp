@@ -1,0 +1,67 @@
+// The files a run of `xshell relax` writes as it goes and at its end: the
+// VTK series (a step per iteration, thinned to output.max_steps), state.json
+// and summary.json. The first output error is remembered rather than thrown,
+// so that the solvers' callbacks never throw; the run then stops
+// (relax_run.hpp) and reports it.
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "io/config.hpp"
+#include "io/summary_file.hpp"
+#include "io/vtk/vtk_series.hpp"
+#include "linkage/statics_problem.hpp"
+
+namespace xshell {
+
+class RunOutputs {
+ public:
+  // Into `dir` (which exists), for `problem` whose positions are recentred
+  // by `origin`. `log`: where the series' thinning is said
+  // ("xshell: warning: ..."), or null.
+  RunOutputs(const std::filesystem::path& dir, const Config& config, const LinkageProblem& problem,
+             const Eigen::Vector3d& origin, std::ostream* log);
+
+  // A step of the run; force for the first and final states.
+  void step(double time, bool force);
+
+  // The closed series, state.json and summary.json.
+  void finish(const RunSummary& summary);
+
+  // From another thread, while the solver still runs (a signal's grace
+  // period is over): writes the state of the last written VTK step and a
+  // summary `started` completed as interrupted, `reason` its reason.
+  // Returns false when no step was written yet.
+  bool save_last_written(RunSummary started, const std::string& reason);
+
+  bool failed() const { return !error_.empty(); }
+  const std::string& error() const { return error_; }
+
+ private:
+  std::filesystem::path dir_;
+  const LinkageProblem& problem_;
+  Eigen::Vector3d origin_;
+  std::ostream* log_;
+  std::optional<VtkSeries> series_;
+  double last_time_ = -1.0;
+  int max_steps_ = 0;  // output.max_steps
+  // The last written step: its linkage and what a summary says of it.
+  struct LastWritten {
+    RodLinkage linkage;
+    EnergyReport energy;
+    std::vector<Eigen::Vector3d> vertices;  // without the origin
+    std::vector<std::optional<double>> opening_angles;
+  };
+  std::mutex last_written_mutex_;
+  std::optional<LastWritten> last_written_;
+  int warned_thinnings_ = 0;
+  std::string error_;
+};
+
+}  // namespace xshell
