@@ -38,38 +38,37 @@ def directions(rng, n, count):
     return d / np.linalg.norm(d, axis=1, keepdims=True)
 
 
+def central_difference(lk, f, d):
+    """(f(q + h d) - f(q - h d)) / 2h at the linkage's unknowns q, with h
+    relative to its size; the linkage is left at q."""
+    q = lk.dofs
+    h = H * lk.length_scale
+    lk.set_dofs(q + h * d)
+    plus = f()
+    lk.set_dofs(q - h * d)
+    minus = f()
+    lk.set_dofs(q)
+    return (plus - minus) / (2 * h)
+
+
 def gradient_errors(lk, gradient, rng, count=8):
     """Relative errors of gradient . d against central differences of the
     energy along random unit directions d."""
-    q = lk.dofs
-    h = H * lk.length_scale
     errors = []
-    for d in directions(rng, q.size, count):
-        lk.set_dofs(q + h * d)
-        e_plus = lk.energy()
-        lk.set_dofs(q - h * d)
-        e_minus = lk.energy()
-        fd = (e_plus - e_minus) / (2 * h)
+    for d in directions(rng, lk.dofs.size, count):
+        fd = central_difference(lk, lk.energy, d)
         errors.append(abs(fd - gradient @ d) / np.linalg.norm(gradient))
-    lk.set_dofs(q)
     return np.array(errors)
 
 
 def hessian_errors(lk, hessian, rng, count=8):
     """Relative errors of hessian @ d against central differences of the
     gradient along random unit directions d."""
-    q = lk.dofs
-    h = H * lk.length_scale
     errors = []
-    for d in directions(rng, q.size, count):
-        lk.set_dofs(q + h * d)
-        g_plus = lk.gradient()
-        lk.set_dofs(q - h * d)
-        g_minus = lk.gradient()
-        fd = (g_plus - g_minus) / (2 * h)
+    for d in directions(rng, lk.dofs.size, count):
+        fd = central_difference(lk, lk.gradient, d)
         hd = hessian @ d
         errors.append(np.linalg.norm(fd - hd) / np.linalg.norm(hd))
-    lk.set_dofs(q)
     return np.array(errors)
 
 
