@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <string>
 #include <thread>
 
 #include "reliability_support.hpp"
@@ -78,7 +79,8 @@ TEST_CASE("interrupt: SIGTERM during a long iteration ends the run within the gr
   CHECK(temporary_files(dir / "out").empty());
   MESSAGE("large design, 10 edges per segment: first iteration written after "
           << first << " s; SIGTERM 0.02 s into the second, exit 130 after " << seconds
-          << " s (grace " << grace << " s, " << (ran_out ? "ran out" : "not needed") << ")");
+          << " s (grace " << grace << " s, " << std::string(ran_out ? "ran out" : "not needed")
+          << ")");
 
   // The saved state restarts the run where it was: one iteration from it
   // starts at the summary's energy.
