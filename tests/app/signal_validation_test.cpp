@@ -64,7 +64,9 @@ TEST_CASE("interrupt: SIGTERM during a long iteration ends the run within the gr
   REQUIRE(raw != -1);
   REQUIRE(WIFEXITED(raw));
   CHECK(WEXITSTATUS(raw) == 130);
-  CHECK(seconds < grace + 4.0);
+  // The grace period and the write of the last state (4.9 MB: up to 3.5 s
+  // on a loaded machine).
+  CHECK(seconds < grace + 4.9);
   const nlohmann::json s = read_json(dir / "out" / "summary.json");
   CHECK(s["status"] == "interrupted");
   CHECK(s["interrupted"] == true);
