@@ -2,6 +2,7 @@
 
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkPolyDataNormals.h>
 #include <vtkXMLPolyDataReader.h>
 
 #include <filesystem>
@@ -36,6 +37,21 @@ DrawnAs drawn_as(vtkPolyData& data) {
   if (data.GetNumberOfLines() > 0) return DrawnAs::Tubes;
   if (data.GetPointData()->GetArray("reaction_force") != nullptr) return DrawnAs::Arrows;
   return DrawnAs::Spheres;
+}
+
+// `surface` with point normals for its shape, split at sharp creases; its
+// triangles are consistently outward already (solids_file.cpp).
+vtkSmartPointer<vtkPolyData> with_normals(vtkPolyData* surface) {
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputData(surface);
+  normals->ComputePointNormalsOn();
+  normals->ComputeCellNormalsOff();
+  normals->SplittingOn();
+  normals->SetFeatureAngle(60.0);
+  normals->ConsistencyOff();
+  normals->AutoOrientNormalsOff();
+  normals->Update();
+  return normals->GetOutput();
 }
 
 }  // namespace
@@ -104,6 +120,7 @@ void scale_deflection(std::vector<RenderInput>& inputs, double k) {
       throw InputError(cannot + ": '" + printable(reference) + "' has " +
                        std::to_string(from->GetNumberOfPoints()) + " points, it has " +
                        std::to_string(n));
+    if (k == 1.0) continue;  // as written, to the last bit
     vtkNew<vtkPoints> moved;
     moved->SetDataTypeToDouble();
     moved->SetNumberOfPoints(n);
@@ -117,8 +134,8 @@ void scale_deflection(std::vector<RenderInput>& inputs, double k) {
     auto copy = vtkSmartPointer<vtkPolyData>::New();
     copy->ShallowCopy(input.data);
     copy->SetPoints(moved);
-    if (k != 1.0) copy->GetPointData()->RemoveArray("Normals");  // those of the solved shape
-    input.data = copy;
+    copy->GetPointData()->RemoveArray("Normals");  // those of the solved shape
+    input.data = input.drawn == DrawnAs::Surface ? with_normals(copy) : copy;
   }
 }
 

@@ -24,6 +24,10 @@
 namespace xshell {
 namespace {
 
+// The colour bar's font when installed (Debian: fonts-dejavu-core): VTK's
+// own font draws "[" and "]" as "(" and ")".
+constexpr const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
 vtkDataArray* find_array(vtkPolyData& data, const std::string& name, bool* on_points = nullptr) {
   if (vtkDataArray* a = data.GetPointData()->GetArray(name.c_str())) {
     if (on_points) *on_points = true;
@@ -183,11 +187,17 @@ Scene build_scene(const std::vector<RenderInput>& inputs, const Coloring& colori
   bar.SetTitle(coloring.title.c_str());
   bar.SetOrientationToHorizontal();
   bar.SetNumberOfLabels(5);
-  bar.SetLabelFormat("%-#.3g");
+  bar.SetLabelFormat("%.3g");
   bar.SetPosition(0.1, 0.05);
   bar.SetWidth(0.8);
   bar.SetHeight(0.9);
+  std::error_code no_font;
+  const bool dejavu = std::filesystem::is_regular_file(kFont, no_font);
   for (vtkTextProperty* text : {bar.GetTitleTextProperty(), bar.GetLabelTextProperty()}) {
+    if (dejavu) {
+      text->SetFontFamily(VTK_FONT_FILE);
+      text->SetFontFile(kFont);
+    }
     text->SetColor(0.0, 0.0, 0.0);
     text->ShadowOff();
     text->ItalicOff();
