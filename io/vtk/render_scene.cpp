@@ -172,6 +172,10 @@ Scene build_scene(const std::vector<RenderInput>& inputs, const Coloring& colori
     }
     auto actor = vtkSmartPointer<vtkActor>::New();
     actor->SetMapper(mapper);
+    // Some ambient light: a face seen at grazing incidence (a lath seen
+    // end-on from the front) keeps its colour instead of turning black.
+    actor->GetProperty()->SetAmbient(0.35);
+    actor->GetProperty()->SetDiffuse(0.65);
     if (!colored && input.drawn == DrawnAs::Arrows)
       actor->GetProperty()->SetColor(0.8, 0.1, 0.1);
     else if (!colored && input.drawn == DrawnAs::Spheres)
