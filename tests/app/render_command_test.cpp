@@ -113,8 +113,8 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "render command: views, an exaggerated deflection and a joints-only file draw; no reference "
-    "geometry is status 2 (needs a display)") {
+    "render command: views and an exaggerated deflection and a joints-only file draw; no "
+    "reference geometry is status 2 (needs a display)") {
   Scratch dir("render-views");
   relax_sample(dir);
   fs::create_directory(dir / "alone");

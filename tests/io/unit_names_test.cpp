@@ -27,7 +27,7 @@ TEST_CASE("unit_label: configured names replace the words length and force") {
   CHECK(unit_label("lengths", mm) == "lengths");  // whole words only
 }
 
-TEST_CASE("config: \"units\" are read, written back and checked") {
+TEST_CASE("config: the units key is read and written back and checked") {
   const std::string base =
       R"({"linkage": "g.obj", "material": {"young_modulus": 1, "cross_section": {"width": 1, "height": 1}})";
   const Config plain = parse_config(base + "}", "c.json", "");
