@@ -113,7 +113,7 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "render command: views and an exaggerated deflection and a joints-only file draw; no "
+    "render command: views and an exaggerated deflection and a joints-only file draw and no "
     "reference geometry is status 2 (needs a display)") {
   Scratch dir("render-views");
   relax_sample(dir);
