@@ -84,7 +84,22 @@ Subcommands add_subcommands(CLI::App& app, CommandLine& line) {
   s.render->add_option("--out", render.png, "PNG file to write")->required()->check(kNonEmptyPath);
   s.render->add_option("--width", render.width, "Picture width in pixels");
   s.render->add_option("--height", render.height, "Picture height in pixels");
-  s.render->add_option("--color", render.color, "Point or cell array to colour by");
+  s.render->add_option_function<std::string>(
+      "--color",
+      [&render](const std::string& name) {
+        render.color = name;
+        render.color_given = true;
+      },
+      "Point or cell array to colour by (default bending_density where there is one; \"\" for "
+      "none)");
+  s.render->add_option("--view", render.view, "iso | top | front | side (default iso)")
+      ->check(CLI::IsMember({"iso", "top", "front", "side"}));
+  s.render
+      ->add_option_function<double>(
+          "--scale-deflection", [&render](const double& k) { render.scale_deflection = k; },
+          "Draw the displacement from the run's first step K times (K >= 0)")
+      ->check(kFiniteNumber)
+      ->check(CLI::NonNegativeNumber);
 
   FabricateArguments& fabricate = line.fabricate;
   s.fabricate = app.add_subcommand(

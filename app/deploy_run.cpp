@@ -161,12 +161,13 @@ DeploymentSummary deployment_summary(const Deployment& d, const DeploymentResult
 }
 
 // deployment.png from deployment.csv, when there is a table to plot.
-void write_plot(const fs::path& dir, bool has_table, bool messages, DeploymentSummary& ds) {
+void write_plot(const fs::path& dir, bool has_table, bool messages, const UnitNames& units,
+                DeploymentSummary& ds) {
   if (dir.empty()) return;  // a run that writes no files
   std::error_code ignored;
   fs::remove(dir / kPlot, ignored);  // never leave an earlier run's plot behind
   if (!has_table) return;
-  const PlotOutcome plot = plot_deployment(dir / kTable, dir / kPlot);
+  const PlotOutcome plot = plot_deployment(dir / kTable, dir / kPlot, units);
   if (plot.written)
     ds.plot = kPlot;
   else if (messages)
@@ -234,7 +235,8 @@ SolverRun run_deployment(const Config& config, LinkageProblem& problem, const fs
   if (result.status == SolveStatus::Interrupted && !run.output_error.empty())
     run.result.status = SolveStatus::StepFailed;
   DeploymentSummary ds = deployment_summary(d, result, problem);
-  write_plot(dir, !result.steps.empty() && run.output_error.empty(), hooks.messages, ds);
+  write_plot(dir, !result.steps.empty() && run.output_error.empty(), hooks.messages, config.units,
+             ds);
   if (hooks.messages)
     std::fprintf(
         stderr,

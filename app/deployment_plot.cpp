@@ -74,7 +74,14 @@ fs::path find_script() {
 
 }  // namespace
 
-PlotOutcome plot_deployment(const fs::path& csv, const fs::path& png) {
+PlotLabels plot_labels(const UnitNames& units) {
+  if (units.length.empty() && units.force.empty())
+    return {"energy", "torque dE/dA (energy per radian)"};
+  return {"energy [" + unit_label("force length", units) + "]",
+          "torque dE/dA [" + unit_label("force length/rad", units) + "]"};
+}
+
+PlotOutcome plot_deployment(const fs::path& csv, const fs::path& png, const UnitNames& units) {
   PlotOutcome outcome;
   const fs::path script = find_script();
   if (script.empty()) {
@@ -89,7 +96,9 @@ PlotOutcome plot_deployment(const fs::path& csv, const fs::path& png) {
   const fs::path temporary = png.parent_path() / ("." + png.filename().string() + ".tmp-" +
                                                   std::to_string(getpid()) + "-plot.png");
   std::error_code ignored;
-  if (!run_quietly({python, script.string(), csv.string(), png.string(), temporary.string()})) {
+  const PlotLabels labels = plot_labels(units);
+  if (!run_quietly({python, script.string(), csv.string(), png.string(), temporary.string(),
+                    labels.energy, labels.torque})) {
     fs::remove(temporary, ignored);
     outcome.message = python + " failed to draw the plot";
     return outcome;

@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <string>
 
+#include "io/unit_names.hpp"
+
 namespace xshell {
 
 struct PlotOutcome {
@@ -18,8 +20,16 @@ struct PlotOutcome {
   std::string message;  // why not, when not written
 };
 
+// The axis labels of energy and torque: with the configured units (e.g.
+// "energy [N mm]", "torque dE/dA [N mm/rad]"), else in words.
+struct PlotLabels {
+  std::string energy, torque;
+};
+PlotLabels plot_labels(const UnitNames& units);
+
 // Draws `csv` (the deployment table) into `png`, atomically (a temporary
-// name in the same directory, then renamed).
-PlotOutcome plot_deployment(const std::filesystem::path& csv, const std::filesystem::path& png);
+// name in the same directory, then renamed), its axes labelled with `units`.
+PlotOutcome plot_deployment(const std::filesystem::path& csv, const std::filesystem::path& png,
+                            const UnitNames& units = {});
 
 }  // namespace xshell

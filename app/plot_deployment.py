@@ -2,9 +2,10 @@
 opening angle, drawn from deployment.csv with matplotlib.
 
 Run by xshell (app/deployment_plot.cpp) as
-    python3 plot_deployment.py TABLE PICTURE TEMPORARY
+    python3 plot_deployment.py TABLE PICTURE TEMPORARY [ENERGY_LABEL TORQUE_LABEL]
 The picture is drawn to TEMPORARY (in PICTURE's folder) and renamed onto
-PICTURE, so that PICTURE is either absent or complete.
+PICTURE, so that PICTURE is either absent or complete. The labels name the
+energy and torque axes with their units (e.g. "energy [N mm]").
 """
 import csv
 import math
@@ -17,7 +18,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 
 
-def main(table, picture, temporary):
+def main(table, picture, temporary, energy_label="energy",
+         torque_label="torque dE/dA (energy per radian)"):
     with open(table, newline="") as f:
         rows = list(csv.DictReader(f))
     angle = [math.degrees(float(r["average_angle"])) for r in rows]
@@ -28,7 +30,7 @@ def main(table, picture, temporary):
         left.plot(angle, [float(r[key]) for r in rows], style, color="tab:blue", label=label,
                   markersize=3, linewidth=1.5 if key == "energy_total" else 1.0)
     left.set_xlabel("average opening angle (degrees)")
-    left.set_ylabel("energy", color="tab:blue")
+    left.set_ylabel(energy_label, color="tab:blue")
     left.legend(loc="upper left", title="energy")
     right = left.twinx()
     right.plot(angle, [float(r["torque"]) for r in rows], "s-", color="tab:red", markersize=3)
@@ -36,7 +38,7 @@ def main(table, picture, temporary):
     if unstable:
         right.plot(*zip(*unstable), "x", color="black", label="not stable")
         right.legend(loc="lower right")
-    right.set_ylabel("torque dE/dA (energy per radian)", color="tab:red")
+    right.set_ylabel(torque_label, color="tab:red")
     left.set_title("deployment")
     fig.tight_layout()
     fig.savefig(temporary, format="png")
@@ -44,4 +46,4 @@ def main(table, picture, temporary):
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:4])
+    main(*sys.argv[1:6])

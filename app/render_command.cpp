@@ -16,8 +16,9 @@ namespace xshell {
 namespace {
 namespace fs = std::filesystem;
 
-// The last step's solids file of an output directory, else its rods file.
-std::string final_step_file(const fs::path& dir) {
+// The last step's solids file of an output directory, else its rods file;
+// and its reactions.vtp when there is one.
+std::vector<std::string> final_step_files(const fs::path& dir) {
   std::vector<std::string> solids, rods;
   std::error_code error;
   for (fs::directory_iterator it(dir, error), end; !error && it != end; it.increment(error)) {
@@ -33,7 +34,17 @@ std::string final_step_file(const fs::path& dir) {
   auto& files = solids.empty() ? rods : solids;
   if (files.empty())
     throw InputError(printable(dir.string()) + ": no rods_*.vtp or solids_*.vtp files");
-  return *std::max_element(files.begin(), files.end());
+  std::vector<std::string> chosen = {*std::max_element(files.begin(), files.end())};
+  if (fs::is_regular_file(dir / "reactions.vtp", error)) chosen.push_back(dir / "reactions.vtp");
+  return chosen;
+}
+
+RenderView view_named(const std::string& name) {
+  if (name == "top") return RenderView::Top;
+  if (name == "front") return RenderView::Front;
+  if (name == "side") return RenderView::Side;
+  if (name == "iso") return RenderView::Iso;
+  throw InputError("--view: must be iso, top, front or side, got '" + printable(name) + "'");
 }
 
 void check_side(const char* option, int pixels) {
@@ -44,20 +55,28 @@ void check_side(const char* option, int pixels) {
 }  // namespace
 
 // Exit statuses: 2 for invalid input (an option, a file that is missing or
-// not VTK PolyData, nothing to draw, an unknown colour array), 4 when the
-// picture cannot be made or written (no X display, the PNG file).
+// not VTK PolyData, nothing to draw, an unknown colour array, no reference
+// geometry for --scale-deflection), 4 when the picture cannot be made or
+// written (no X display, the PNG file).
 int run_render(const RenderArguments& args) {
   RenderOptions options;
   options.width = args.width;
   options.height = args.height;
   options.color_array = args.color;
+  options.color_optional = !args.color_given;
+  options.scale_deflection = args.scale_deflection;
   try {
+    options.view = view_named(args.view);
     check_side("--width", args.width);
     check_side("--height", args.height);
     std::vector<std::string> files;
     for (const std::string& input : args.inputs) {
       std::error_code ignored;
-      files.push_back(fs::is_directory(input, ignored) ? final_step_file(input) : input);
+      if (!fs::is_directory(input, ignored)) {
+        files.push_back(input);
+        continue;
+      }
+      for (std::string& file : final_step_files(input)) files.push_back(std::move(file));
     }
     render_png(files, args.png, options);
   } catch (const InputError& e) {

@@ -3,6 +3,7 @@
 // under `xvfb-run -a` on a machine without a display.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,9 @@ struct RenderArguments {
   std::string png;
   int width = 1024, height = 768;
   std::string color = "bending_density";
+  bool color_given = false;  // --color given: an array no input has is an error
+  std::string view = "iso";  // iso | top | front | side
+  std::optional<double> scale_deflection;
 };
 
 int run_render(const RenderArguments& arguments);

@@ -345,6 +345,27 @@ Deployment read_deployment(const JsonField& f) {
   return d;
 }
 
+// "units": names for labels.
+UnitNames read_units(const JsonField& f) {
+  f.check_keys({"length", "force"});
+  UnitNames names;
+  for (auto [key, name] : {std::pair{"length", &names.length}, std::pair{"force", &names.force}}) {
+    const auto field = f.find(key);
+    if (!field) continue;
+    *name = field->string();
+    const bool plain = std::all_of(name->begin(), name->end(), [](char c) {
+      return static_cast<unsigned char>(c) > ' ' && c != 0x7f &&
+             std::string("/^[]").find(c) == std::string::npos;
+    });
+    if (name->empty() || name->size() > 16 || !plain)
+      field->fail(
+          "must be a unit's name of 1 to 16 characters without spaces, '/', '^', '[' or ']', got "
+          "\"" +
+          printable(*name) + "\"");
+  }
+  return names;
+}
+
 nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 nlohmann::json toggle_json(Toggle t) {
@@ -361,7 +382,7 @@ Config parse_config(const std::string& text, const std::string& name, const std:
   if (!document.is_object())
     root.fail("the configuration must be a JSON object { ... }, got " + root.describe());
   root.check_keys({"linkage", "subdivisions", "rest_shape", "joints", "material", "rods",
-                   "supports", "loads", "solver", "output", "deployment", "transform"});
+                   "supports", "loads", "solver", "output", "deployment", "transform", "units"});
   Config c;
   c.source = shown;
   c.linkage = file_path(root.require("linkage"), base_dir);
@@ -377,6 +398,7 @@ Config parse_config(const std::string& text, const std::string& name, const std:
   const auto output = root.find("output");
   c.output = read_output(output ? &*output : nullptr, base_dir);
   if (auto deployment = root.find("deployment")) c.deployment = read_deployment(*deployment);
+  if (auto units = root.find("units")) c.units = read_units(*units);
   return c;
 }
 
@@ -509,6 +531,8 @@ nlohmann::json to_json(const Config& c) {
         {"solids", toggle_json(c.output.solids)},
         {"progress", toggle_json(c.output.progress)}}}};
   if (!c.transform.is_identity()) j["transform"] = transform_json(c.transform);
+  if (!c.units.length.empty()) j["units"]["length"] = c.units.length;
+  if (!c.units.force.empty()) j["units"]["force"] = c.units.force;
   if (const auto& d = c.deployment) {
     nlohmann::json deployment = {{"steps", d->steps}};
     if (d->target == DeploymentTarget::AverageOpeningAngle) {

@@ -26,6 +26,7 @@
 #include "linkage/graph.hpp"
 #include "linkage/graph_transform.hpp"
 #include "linkage/rod_linkage.hpp"
+#include "unit_names.hpp"
 
 namespace xshell {
 
@@ -260,6 +261,10 @@ struct Config {
   SolverOptions solver;                      // "solver"
   OutputOptions output;                      // "output"
   std::optional<Deployment> deployment;      // "deployment", optional
+  UnitNames units;  // "units", default none: {"length": "mm", "force": "N"}, each optional, 1 to
+                    // 16 characters without spaces, "/", "^", "[" or "]": the names of the
+                    // system the numbers are in, for labels only (colour bars of `xshell
+                    // render`, deployment.png); nothing is converted
 };
 
 // Reads the configuration file at `path` (a regular file of at most

@@ -7,7 +7,7 @@ packages=(
   libeigen3-dev libsundials-dev libsuitesparse-dev libvtk9-dev
   doctest-dev nlohmann-json3-dev libcli11-dev libspectra-dev
   libopenblas0-openmp
-  xvfb xauth
+  xvfb xauth fonts-dejavu-core
   clang libclang-rt-14-dev
   python3-matplotlib
   python3-dev pybind11-dev python3-numpy python3-scipy python3-pytest

@@ -31,6 +31,7 @@ void write_reactions_file(const EngineeringSnapshot& snapshot, const std::filesy
   point_data->AddArray(vector_array("reaction_force", forces));
   point_data->AddArray(vector_array("reaction_moment", moments));
   point_data->SetActiveVectors("reaction_force");
+  add_units(*data, {{"reaction_force", "force"}, {"reaction_moment", "force length"}});
   write_polydata(*data, path, options);
 }
 
@@ -68,6 +69,12 @@ void write_stresses_file(const EngineeringSnapshot& snapshot, const std::filesys
   for (int k = 0; k < 11; ++k)
     if (k < 10 || any_utilisation) cell_data->AddArray(scalar_array(names[k], columns[k]));
   cell_data->SetActiveScalars(any_utilisation ? "utilisation" : "max_normal_stress");
+  static const char* units[10] = {
+      "force",          "force length",   "force length",   "force length",   "force/length^2",
+      "force/length^2", "force/length^2", "force/length^2", "force/length^2", "force/length^2"};
+  ArrayUnits stress_units;
+  for (int k = 0; k < 10; ++k) stress_units.emplace_back(names[k], units[k]);
+  add_units(*data, stress_units);
   write_polydata(*data, path, options);
 }
 

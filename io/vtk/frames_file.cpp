@@ -47,6 +47,7 @@ void write_frames_file(const Snapshot& snapshot, const std::filesystem::path& pa
   point_data->AddArray(scalar_array("stretching_density", stretching));
   point_data->AddArray(scalar_array("edge_length", lengths));
   point_data->SetActiveVectors("d1");
+  add_units(*data, {{"stretching_density", "force"}, {"edge_length", "length"}});
   write_polydata(*data, path, options);
 }
 

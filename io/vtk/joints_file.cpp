@@ -40,6 +40,7 @@ void write_joints_file(const Snapshot& snapshot, const std::filesystem::path& pa
     point_data->AddArray(vector_array("pin_force_b", force_b));
   }
   point_data->SetActiveVectors("normal");
+  add_units(*data, {{"opening_angle", "rad"}, {"pin_force_a", "force"}, {"pin_force_b", "force"}});
   write_polydata(*data, path, options);
 }
 

@@ -47,6 +47,7 @@ void write_rods_file(const Snapshot& snapshot, const std::filesystem::path& path
   point_data->AddArray(scalar_array("bending_density", bending));
   point_data->AddArray(scalar_array("twisting_density", twisting));
   point_data->SetActiveScalars("bending_density");
+  add_units(*data, rod_units());
   write_polydata(*data, path, options);
 }
 

@@ -105,6 +105,7 @@ void write_solids_file(const Snapshot& snapshot, const std::filesystem::path& pa
   normals->Update();
   vtkPolyData* output = normals->GetOutput();
   output->GetPointData()->SetActiveScalars("bending_density");
+  add_units(*output, rod_units());
   write_polydata(*output, path, options);
 }
 

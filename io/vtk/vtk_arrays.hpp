@@ -4,10 +4,12 @@
 
 #include <vtkDoubleArray.h>
 #include <vtkIntArray.h>
+#include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace xshell {
@@ -20,5 +22,20 @@ vtkSmartPointer<vtkIntArray> int_array(const std::string& name, const std::vecto
 // Three components per tuple: ParaView offers it for glyphs and as a vector.
 vtkSmartPointer<vtkDoubleArray> vector_array(const std::string& name,
                                              const std::vector<Eigen::Vector3d>& values);
+
+// A unit for each named array, in the words of unit_names.hpp ("force",
+// "force/length^2", "1/length", ...).
+using ArrayUnits = std::vector<std::pair<std::string, std::string>>;
+
+// Adds the field-data string array "units" to `data`: one value "NAME=UNIT"
+// per entry (ParaView lists it with the file's field data).
+void add_units(vtkPolyData& data, const ArrayUnits& units);
+
+// The units of the rods' and solids' point arrays (energy per length is a
+// force).
+ArrayUnits rod_units();
+
+// The unit that `data`'s field data "units" gives `array`; "" when none.
+std::string array_unit(vtkPolyData& data, const std::string& array);
 
 }  // namespace xshell

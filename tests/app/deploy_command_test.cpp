@@ -5,6 +5,7 @@
 #include <sstream>
 #include <vector>
 
+#include "app/deployment_plot.hpp"
 #include "command_runner.hpp"
 #include "skip.hpp"
 
@@ -163,6 +164,32 @@ TEST_CASE("the deployment plot runs without a shell: quotes and $(...) in the ou
   CHECK_FALSE(fs::exists(dir / "pwned"));
   CHECK_FALSE(fs::exists(dir / name / "pwned"));
   CHECK_FALSE(fs::exists(dir / "pwned2"));
+}
+
+TEST_CASE("the deployment plot labels energy and torque with the configured units") {
+  CHECK(plot_labels({}).energy == "energy");
+  CHECK(plot_labels({}).torque == "torque dE/dA (energy per radian)");
+  CHECK(plot_labels({"mm", "N"}).energy == "energy [N mm]");
+  CHECK(plot_labels({"mm", "N"}).torque == "torque dE/dA [N mm/rad]");
+  if (!matplotlib_available()) XSHELL_SKIP("no python3 with matplotlib: no deployment plot");
+  const fs::path dir = temporary_directory("deploy-plot-units");
+  write_text(dir / "dome.obj", dome_obj());
+  const std::string plain = deploy_config(R"({"average_opening_angle": 1.7, "steps": 1})");
+  std::string with_units = plain;
+  with_units.replace(with_units.find("\"linkage\""), 0,
+                     R"("units": {"length": "m", "force": "N"}, )");
+  write_text(dir / "plain.json", plain);
+  write_text(dir / "units.json", with_units);
+  for (const char* name : {"plain", "units"}) {
+    const CommandResult r = run_xshell(std::string("relax ") + name + ".json --out " + name, dir);
+    CAPTURE(r.errors);
+    REQUIRE(r.status == 0);
+    REQUIRE(fs::exists(dir / name / "deployment.png"));
+  }
+  CHECK(read_json(dir / "units" / "summary.json")["configuration"]["units"]["force"] == "N");
+  // The same table, other labels: another picture.
+  CHECK(read_text(dir / "units" / "deployment.csv") == read_text(dir / "plain" / "deployment.csv"));
+  CHECK(read_text(dir / "units" / "deployment.png") != read_text(dir / "plain" / "deployment.png"));
 }
 
 TEST_CASE("relax --init continues a deployment, and closing it back returns the start energy") {

@@ -77,7 +77,13 @@ TEST_CASE("render command: options out of range are invalid input (status 2)") {
       {"--width 100000", "--width: must be 1 to 8192 pixels, got 100000"},
       {"--height 20000", "--height: must be 1 to 8192"},
       {"--width many", "--width"},
-      {"--color no_such_array", "no drawn input has an array named 'no_such_array'"},
+      {"--color no_such_array",
+       "no drawn input has an array named 'no_such_array' to colour by; the arrays are: "
+       "Normals, bending_density, curvature"},
+      {"--view diagonal", "--view"},
+      {"--scale-deflection -1", "--scale-deflection"},
+      {"--scale-deflection nan", "--scale-deflection: must be a finite number"},
+      {"--scale-deflection 1e400", "--scale-deflection"},
   };
   int checked = 0;
   for (const Case& c : cases) {
@@ -87,7 +93,7 @@ TEST_CASE("render command: options out of range are invalid input (status 2)") {
     CHECK_FALSE(fs::exists(dir / "p.png"));
     ++checked;
   }
-  CHECK(checked == 7);
+  CHECK(checked == 11);
 }
 
 TEST_CASE(
@@ -104,6 +110,33 @@ TEST_CASE(
   CHECK(r.status == 0);
   CHECK(fs::file_size(dir / "p.png") > 0);
   CHECK(contains(r.errors, "xshell: wrote p.png"));
+}
+
+TEST_CASE(
+    "render command: views and an exaggerated deflection and a joints-only file draw and no "
+    "reference geometry is status 2 (needs a display)") {
+  Scratch dir("render-views");
+  relax_sample(dir);
+  fs::create_directory(dir / "alone");
+  fs::copy_file(dir / "run" / "joints_000001.vtp", dir / "alone" / "joints_000001.vtp");
+  check_status(run_xshell_limited("render alone/joints_000001.vtp --out p.png --scale-deflection 5",
+                                  dir.path(), 60),
+               2, {"--scale-deflection: no reference geometry for 'alone/joints_000001.vtp'"});
+  if (!std::getenv("DISPLAY")) XSHELL_SKIP("DISPLAY is not set: no picture is drawn");
+  const std::vector<std::string> commands = {
+      "render run --out p.png --view top --width 96 --height 64",
+      "render run --out p.png --view front --scale-deflection 20 --width 96 --height 64",
+      "render run --out p.png --view side --color curvature --width 96 --height 64",
+      "render alone/joints_000001.vtp --out p.png --width 96 --height 64",
+      "render run/joints_000001.vtp --out p.png --scale-deflection 0 --color opening_angle"};
+  for (const std::string& command : commands) {
+    CAPTURE(command);
+    fs::remove(dir / "p.png");
+    const CommandResult r = run_xshell_limited(command, dir.path(), 60);
+    CAPTURE(r.errors);
+    CHECK(r.status == 0);
+    CHECK(fs::is_regular_file(dir / "p.png"));
+  }
 }
 
 }  // namespace xshell::test

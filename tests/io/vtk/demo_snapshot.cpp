@@ -100,4 +100,31 @@ Snapshot straight_rod_snapshot(const SectionSnapshot& section, const Eigen::Vect
   return snapshot;
 }
 
+Snapshot grid_snapshot(int n, double height) {
+  const int edges = 4 * (n - 1);
+  auto at = [&](double x, double y) {
+    return Eigen::Vector3d(x, y, height * (1.0 - 4.0 * (x * x + y * y)));
+  };
+  const auto coordinate = [&](int i) { return -0.5 + static_cast<double>(i) / (n - 1); };
+  Snapshot snapshot;
+  for (int along_y = 0; along_y < 2; ++along_y)
+    for (int i = 0; i < n; ++i) {
+      RodSnapshot rod;
+      rod.rod_id = along_y * n + i;
+      rod.section = {SectionSnapshot::Shape::Rectangle, 0.01, 0.01};
+      for (int k = 0; k <= edges; ++k) {
+        const double s = -0.5 + static_cast<double>(k) / edges;
+        rod.nodes.push_back(along_y ? at(coordinate(i), s) : at(s, coordinate(i)));
+        if (k < edges) rod.edge_segment.push_back(rod.rod_id * (n - 1) + k / 4);
+      }
+      fill_rod(rod, Eigen::Vector3d(0.0, 0.0, 1.0), 0.0);
+      snapshot.rods.push_back(rod);
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      snapshot.joints.push_back(joint(i * n + j, at(coordinate(i), coordinate(j)),
+                                      Eigen::Vector3d::UnitZ(), 0.5 * kPi, 4));
+  return snapshot;
+}
+
 }  // namespace xshell::test

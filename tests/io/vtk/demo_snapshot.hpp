@@ -23,4 +23,11 @@ Snapshot demo_snapshot(double time = 0.0, double phase = 0.0);
 Snapshot straight_rod_snapshot(const SectionSnapshot& section, const Eigen::Vector3d& start,
                                const Eigen::Vector3d& end, int n_edges);
 
+// A square grid linkage of side 1 in the xy plane, centred at the origin:
+// `n` rods along x (ids 0 to n - 1) and `n` along y (ids n to 2n - 1),
+// 10 mm x 10 mm (0.01) laths, 4 edges between crossings, raised to
+// z = height (1 - 4 r^2) (r the distance from the centre: a dome for
+// height > 0, a sag for height < 0); a joint at every crossing.
+Snapshot grid_snapshot(int n, double height);
+
 }  // namespace xshell::test

@@ -5,11 +5,6 @@
 #include "io/vtk/render_png.hpp"
 
 #include <doctest/doctest.h>
-#include <vtkImageData.h>
-#include <vtkNew.h>
-#include <vtkPNGReader.h>
-#include <vtkPointData.h>
-#include <vtkUnsignedCharArray.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -23,6 +18,7 @@
 #include "io/vtk/rods_file.hpp"
 #include "io/vtk/solids_file.hpp"
 #include "io/vtk/x_display.hpp"
+#include "render_test_support.hpp"
 #include "skip.hpp"
 #include "vtk_test_support.hpp"
 
@@ -59,28 +55,8 @@ struct Picture {
 };
 
 Picture read_png(const std::filesystem::path& path) {
-  REQUIRE(std::filesystem::is_regular_file(path));
-  vtkNew<vtkPNGReader> reader;
-  REQUIRE(reader->CanReadFile(path.string().c_str()));
-  reader->SetFileName(path.string().c_str());
-  reader->Update();
-  vtkImageData* image = reader->GetOutput();
-  int dims[3];
-  image->GetDimensions(dims);
-  Picture picture;
-  picture.width = dims[0];
-  picture.height = dims[1];
-  vtkDataArray* pixels = image->GetPointData()->GetScalars();
-  REQUIRE(pixels);
-  REQUIRE(pixels->GetNumberOfComponents() >= 3);
-  for (vtkIdType i = 0; i < pixels->GetNumberOfTuples(); ++i) {
-    const double* p = pixels->GetTuple(i);
-    picture.colours.insert((static_cast<unsigned>(p[0]) << 16) |
-                           (static_cast<unsigned>(p[1]) << 8) | static_cast<unsigned>(p[2]));
-  }
-  const double* corner = pixels->GetTuple(0);
-  picture.white_corner = corner[0] == 255 && corner[1] == 255 && corner[2] == 255;
-  return picture;
+  const Pixels pixels = read_pixels(path);
+  return {pixels.width, pixels.height, pixels.colours(), pixels.at(0, 0) == Rgb{255, 255, 255}};
 }
 
 // The demo snapshot's rods and solids files in `dir`.
@@ -126,7 +102,7 @@ TEST_CASE("render: solids and tubes to a non-trivial PNG (needs a display)") {
 
   // Solids present: they are drawn, coloured by bending density.
   const auto solid_png = dir.path() / "solids.png";
-  render_png({rods, solids}, solid_png.string(), {320, 240, "bending_density", 0.0});
+  render_png({rods, solids}, solid_png.string(), sized(320, 240, "bending_density"));
   const Picture solid = read_png(solid_png);
   XSHELL_COUNTED_CHECK(checks, solid.width == 320);
   XSHELL_COUNTED_CHECK(checks, solid.height == 240);
@@ -135,7 +111,7 @@ TEST_CASE("render: solids and tubes to a non-trivial PNG (needs a display)") {
 
   // Rods only: drawn as tubes, coloured by a cell array, other size.
   const auto tube_png = dir.path() / "tubes.png";
-  render_png({rods}, tube_png.string(), {200, 150, "rod_id", 0.0});
+  render_png({rods}, tube_png.string(), sized(200, 150, "rod_id"));
   const Picture tube = read_png(tube_png);
   XSHELL_COUNTED_CHECK(checks, tube.width == 200);
   XSHELL_COUNTED_CHECK(checks, tube.height == 150);
@@ -144,7 +120,7 @@ TEST_CASE("render: solids and tubes to a non-trivial PNG (needs a display)") {
 
   // One colour for everything when no array is asked for.
   const auto plain_png = dir.path() / "plain.png";
-  render_png({solids}, plain_png.string(), {64, 48, "", 0.0});
+  render_png({solids}, plain_png.string(), sized(64, 48, ""));
   XSHELL_COUNTED_CHECK(checks, read_png(plain_png).colours.size() > 1);
   CHECK(checks == 9);
 }
@@ -181,10 +157,13 @@ TEST_CASE("render: bad input is an InputError with or without a display and draw
       {{garbage.string()}, {}, "not a VTK XML PolyData file"},
       {{json.string()}, {}, "not a VTK XML PolyData file"},
       {{truncated.string()}, {}, "truncated.vtp"},
-      {{rods}, {64, 48, "no_such_array", 0.0}, "no drawn input has an array named"},
-      {{rods}, {0, 48, "", 0.0}, "must be 1 to 8192 pixels, got 0 x 48"},
-      {{rods}, {64, -1, "", 0.0}, "got 64 x -1"},
-      {{rods}, {100000, 48, "", 0.0}, "got 100000 x 48"},
+      {{rods},
+       sized(64, 48, "no_such_array"),
+       "no drawn input has an array named 'no_such_array' to colour by; the arrays are: "
+       "bending_density, curvature, rod_id, segment_id, twist, twisting_density"},
+      {{rods}, sized(0, 48, ""), "must be 1 to 8192 pixels, got 0 x 48"},
+      {{rods}, sized(64, -1, ""), "got 64 x -1"},
+      {{rods}, sized(100000, 48, ""), "got 100000 x 48"},
   };
   int checked = 0;
   for (const Case& c : cases) {
@@ -202,7 +181,7 @@ TEST_CASE("render: the largest picture side is drawn (needs a display)") {
   ScratchDir dir("render_large");
   const auto [rods, solids] = demo_files(dir);
   const auto png = dir.path() / "wide.png";
-  render_png({solids}, png.string(), {kMaxPictureSide, 16, "", 0.0});
+  render_png({solids}, png.string(), sized(kMaxPictureSide, 16, ""));
   CHECK(read_png(png).width == kMaxPictureSide);
 }
 
