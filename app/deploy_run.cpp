@@ -96,15 +96,13 @@ class DeploymentRecorder {
     if (hooks_.progress->every_iteration() && report_number(r) > 0 && print)
       print_progress(r, true);
     ProgressSample sample = progress_sample(r, "deploy");
-    sample.step = solving_;
-    sample.angle = angle_;
+    sample.step = solving_;  // the step being solved (its angle: on_step's sample)
     hooks_.progress->sample(sample);
     poll();
   }
 
   void on_step(const DeploymentStep& s) {
     solving_ = s.step + 1;
-    angle_ = s.average_angle;
     table_ += table_row(s);
     {
       const ScopedSeconds timer(hooks_.output_seconds);
@@ -150,9 +148,8 @@ class DeploymentRecorder {
   bool warned_outside_ = false;
   std::atomic<bool> stop_{false};
   std::string table_ = kHeader;
-  int solving_ = 0;              // the step being solved
-  std::optional<double> angle_;  // the last accepted step's average opening angle
-  long iterations_ = 0;          // over all steps, for the history
+  int solving_ = 0;      // the step being solved
+  long iterations_ = 0;  // over all steps, for the history
   std::string output_error_;
 };
 

@@ -21,12 +21,18 @@ std::vector<nlohmann::json> json_lines(const std::string& text) {
   return out;
 }
 
+// The sample (run.json, writing to "out") run with `options`.
+CommandResult run_sample(const Scratch& dir, const std::string& options,
+                         const std::string& extra = "") {
+  write_text(dir / "run.json", sample_config("out", extra));
+  return run_xshell("relax run.json " + options, dir.path());
+}
+
 }  // namespace
 
 TEST_CASE("run report: timings are finite, non-negative and add up to at most the wall time") {
   Scratch dir("report-timings");
-  write_text(dir / "run.json", sample_config("out"));
-  const CommandResult r = run_xshell("relax run.json --quiet", dir.path());
+  const CommandResult r = run_sample(dir, "--quiet");
   CAPTURE(r.errors);
   REQUIRE(r.status == 0);
   CHECK(count_lines(r.errors) == 1);  // --quiet: only the outcome
@@ -49,8 +55,7 @@ TEST_CASE("run report: timings are finite, non-negative and add up to at most th
 
 TEST_CASE("run report: --progress json prints an object per line, the times last") {
   Scratch dir("report-json");
-  write_text(dir / "run.json", sample_config("out"));
-  const CommandResult r = run_xshell("relax run.json --progress json", dir.path());
+  const CommandResult r = run_sample(dir, "--progress json");
   CAPTURE(r.errors);
   REQUIRE(r.status == 0);
   const std::vector<nlohmann::json> lines = json_lines(r.errors);
@@ -97,8 +102,7 @@ TEST_CASE("run report: without a terminal the default is a few plain lines, neve
 
 TEST_CASE("run report: the analysis' time budget stops it with the status time_limit") {
   Scratch dir("report-budget");
-  write_text(dir / "run.json", sample_config("out", R"(, "analysis": {"max_seconds": 1e-9})"));
-  const CommandResult r = run_xshell("relax run.json --quiet", dir.path());
+  const CommandResult r = run_sample(dir, "--quiet", R"(, "analysis": {"max_seconds": 1e-9})");
   CAPTURE(r.errors);
   REQUIRE(r.status == 0);  // the equilibrium converged; its analysis was cut short
   const nlohmann::json s = read_json(dir / "out" / "summary.json");
@@ -109,9 +113,8 @@ TEST_CASE("run report: the analysis' time budget stops it with the status time_l
   CHECK(contains(s["warnings"].dump(), "analysis.max_seconds"));
   CHECK(s["configuration"]["analysis"]["max_seconds"] == 1e-9);
   // Without a budget, and with fewer modes.
-  write_text(dir / "run.json",
-             sample_config("out", R"(, "analysis": {"max_seconds": null, "modes": 2})"));
-  REQUIRE(run_xshell("relax run.json --quiet", dir.path()).status == 0);
+  REQUIRE(run_sample(dir, "--quiet", R"(, "analysis": {"max_seconds": null, "modes": 2})").status ==
+          0);
   const nlohmann::json full = read_json(dir / "out" / "summary.json");
   CHECK(full["stability_analysis"]["eigenvalues"] == "converged");
   CHECK(full["lowest_eigenvalues"].size() == 2);
