@@ -1,5 +1,5 @@
 // The progress styles (app/run_progress.hpp), written into a temporary file.
-#include "run_progress.hpp"
+#include "app/run_progress.hpp"
 
 #include <doctest/doctest.h>
 
