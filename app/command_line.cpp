@@ -73,9 +73,17 @@ Subcommands add_subcommands(CLI::App& app, CommandLine& line) {
                    "Seconds an iteration may go on after SIGINT/SIGTERM (default 10)")
       ->check(kFiniteNumber)
       ->check(CLI::Range(0.0, 86400.0));
-  s.relax->add_flag("--quiet", relax.quiet, "No progress lines");
-  s.relax->add_flag("--verbose", relax.verbose,
-                    "Progress lines even when stderr is not a terminal");
+  CLI::Option* quiet = s.relax->add_flag("--quiet", relax.quiet, "No progress lines");
+  CLI::Option* verbose = s.relax->add_flag("--verbose", relax.verbose,
+                                           "Progress lines even when stderr is not a terminal");
+  s.relax
+      ->add_option("--progress", relax.progress,
+                   "auto (default: text on a terminal, else plain) | text (a line per "
+                   "iteration) | plain (phases, a line every 5 s at most) | json (an object "
+                   "per line) | off")
+      ->check(CLI::IsMember({"auto", "text", "plain", "json", "off"}))
+      ->excludes(quiet)
+      ->excludes(verbose);
 
   RenderArguments& render = line.render;
   s.render = app.add_subcommand("render", "Render a run's final state (or .vtp files) to a PNG");

@@ -12,6 +12,7 @@
 #include "integrators/deployment/deployment.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
+#include "scoped_seconds.hpp"
 
 namespace xshell {
 
@@ -92,21 +93,32 @@ class DeploymentRecorder {
   void on_report(const Report& r, bool print) {
     if (report_number(r) > 0) ++iterations_;
     hooks_.history->push_back(history_record(r, iterations_, solving_));
-    if (hooks_.progress && report_number(r) > 0 && print) print_progress(r, true);
+    if (hooks_.progress->every_iteration() && report_number(r) > 0 && print)
+      print_progress(r, true);
+    ProgressSample sample = progress_sample(r, "deploy");
+    sample.step = solving_;  // the step being solved (its angle: on_step's sample)
+    hooks_.progress->sample(sample);
     poll();
   }
 
   void on_step(const DeploymentStep& s) {
     solving_ = s.step + 1;
     table_ += table_row(s);
-    try {
-      if (!dir_.empty()) write_file_atomically(dir_ / kTable, table_);
-    } catch (const std::exception& e) {
-      if (output_error_.empty()) output_error_ = e.what();
+    {
+      const ScopedSeconds timer(hooks_.output_seconds);
+      try {
+        if (!dir_.empty()) write_file_atomically(dir_ / kTable, table_);
+      } catch (const std::exception& e) {
+        if (output_error_.empty()) output_error_ = e.what();
+      }
     }
-    hooks_.snapshot(s.step, false);
+    // The series' time is the average opening angle (README, "Outputs");
+    // the start is always written.
+    hooks_.snapshot(s.average_angle, s.step == 0);
+    hooks_.progress->sample(
+        {"deploy", "step", s.step, s.energy.total(), std::nullopt, s.step, s.average_angle});
     warn_outside_opening_range(s);
-    if (hooks_.progress)
+    if (hooks_.progress->every_iteration())
       std::fprintf(stderr,
                    "deploy step %3d  s %.4f  angle %.6f rad (%.3f deg)  energy %.6e  torque %.6e  "
                    "iterations %ld%s%s  "
@@ -222,8 +234,7 @@ SolverRun run_deployment(const Config& config, LinkageProblem& problem, const fs
   recorder.poll();
   const DeploymentResult result =
       deploy(problem, make_plan(d, problem), deployment_options(config), recorder.callbacks());
-  const int last = result.steps.empty() ? 0 : result.steps.back().step;
-  hooks.snapshot(last, true);
+  hooks.snapshot(average_opening_angle(problem.linkage()), true);
 
   SolverRun run;
   run.output_error = recorder.output_error();
@@ -235,8 +246,11 @@ SolverRun run_deployment(const Config& config, LinkageProblem& problem, const fs
   if (result.status == SolveStatus::Interrupted && !run.output_error.empty())
     run.result.status = SolveStatus::StepFailed;
   DeploymentSummary ds = deployment_summary(d, result, problem);
-  write_plot(dir, !result.steps.empty() && run.output_error.empty(), hooks.messages, config.units,
-             ds);
+  {
+    const ScopedSeconds timer(hooks.output_seconds);
+    write_plot(dir, !result.steps.empty() && run.output_error.empty(), hooks.messages, config.units,
+               ds);
+  }
   if (hooks.messages)
     std::fprintf(
         stderr,

@@ -1,23 +1,55 @@
 #include "engineering_outputs.hpp"
 
-#include "integrators/stability/stability_analysis.hpp"
+#include <chrono>
+#include <cstdio>
+
 #include "io/engineering_json.hpp"
 #include "io/vtk/engineering_files.hpp"
 #include "io/vtk/joints_file.hpp"
 
 namespace xshell {
 
-EngineeringSnapshot engineering_results(LinkageProblem& problem, const Config& config,
-                                        const Eigen::Vector3d& origin, RunSummary& summary) {
+namespace {
+
+// The analysis' settings from the configuration's "analysis" and "solver".
+StabilityOptions stability_options(const Config& config) {
+  StabilityOptions options;
+  options.modes.count = config.analysis.modes;
+  options.buckling = config.analysis.buckling;
+  options.unloaded_newton.gradient_tolerance = config.solver.gradient_tolerance;
+  options.unloaded_newton.max_iterations = config.solver.max_iterations;
+  if (config.analysis.max_seconds)
+    options.deadline.at =
+        AnalysisClock::now() + std::chrono::duration_cast<AnalysisClock::duration>(
+                                   std::chrono::duration<double>(*config.analysis.max_seconds));
+  return options;
+}
+
+std::string budget_warning(const Config& config) {
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "the stability analysis stopped at its time budget (analysis.max_seconds = %g s): "
+                "what it had not finished is reported \"time_limit\"",
+                config.analysis.max_seconds.value_or(0.0));
+  return text;
+}
+
+}  // namespace
+
+EngineeringSnapshot engineering_results(
+    LinkageProblem& problem, const Config& config, const Eigen::Vector3d& origin,
+    RunSummary& summary, const std::function<void(const StabilityProgress&)>& on_progress) {
   EngineeringResults results;
   results.reactions = support_reactions(problem);
   results.stresses = linkage_stresses(problem.linkage());
   results.joint_forces = joint_forces(problem);
 
-  StabilityOptions options;
-  options.unloaded_newton.gradient_tolerance = config.solver.gradient_tolerance;
-  options.unloaded_newton.max_iterations = config.solver.max_iterations;
+  StabilityOptions options = stability_options(config);
+  options.on_progress = on_progress;
   const StabilityAnalysis stability = analyse_stability(problem, options);
+  if (stability.modes.reason == kTimeLimit ||
+      stability.buckling.status == BucklingStatus::TimeLimit)
+    summary.warnings.push_back(budget_warning(config));
   StabilityValues values;
   values.eigen_status = stability.modes.converged ? "converged" : stability.modes.reason;
   for (Eigen::Index k = 0; k < stability.modes.values.size(); ++k)
@@ -42,7 +74,11 @@ EngineeringSnapshot engineering_results(LinkageProblem& problem, const Config& c
 void write_engineering_results(LinkageProblem& problem, const Config& config,
                                const Eigen::Vector3d& origin,
                                const std::filesystem::path& directory, RunSummary& summary) {
-  const EngineeringSnapshot snapshot = engineering_results(problem, config, origin, summary);
+  write_engineering_files(engineering_results(problem, config, origin, summary), config, directory);
+}
+
+void write_engineering_files(const EngineeringSnapshot& snapshot, const Config& config,
+                             const std::filesystem::path& directory) {
   const WriteOptions format{config.output.format == OutputFormat::Ascii ? VtkFormat::Ascii
                                                                         : VtkFormat::Binary};
   write_reactions_file(snapshot, directory / "reactions.vtp", format);

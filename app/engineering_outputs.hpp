@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <filesystem>
 
+#include "integrators/stability/stability_analysis.hpp"
 #include "io/config.hpp"
 #include "io/summary_file.hpp"
 #include "io/vtk/engineering_snapshot.hpp"
@@ -19,11 +20,19 @@ namespace xshell {
 // Computes them into summary.engineering, writing no file; returns what the
 // VTK files of write_engineering_results show. problem: at its final
 // (converged) state. origin: added to positions.
-EngineeringSnapshot engineering_results(LinkageProblem& problem, const Config& config,
-                                        const Eigen::Vector3d& origin, RunSummary& summary);
+// The stability analysis runs with config.analysis (its budget from now)
+// and reports to `on_progress` (may be empty); a budget that ran out is
+// said in the summary's warnings.
+EngineeringSnapshot engineering_results(
+    LinkageProblem& problem, const Config& config, const Eigen::Vector3d& origin,
+    RunSummary& summary, const std::function<void(const StabilityProgress&)>& on_progress = {});
 
-// The same, and the VTK files into `directory`. Throws OutputError when a
+// The VTK files of `snapshot` into `directory`. Throws OutputError when a
 // file cannot be written.
+void write_engineering_files(const EngineeringSnapshot& snapshot, const Config& config,
+                             const std::filesystem::path& directory);
+
+// Both.
 void write_engineering_results(LinkageProblem& problem, const Config& config,
                                const Eigen::Vector3d& origin,
                                const std::filesystem::path& directory, RunSummary& summary);

@@ -36,6 +36,8 @@ int run_relax(const RelaxArguments& args, const std::atomic<bool>& stop) {
   hooks.stop = &stop;
   hooks.log = &std::cerr;
   hooks.progress = args.quiet ? Toggle::Off : args.verbose ? Toggle::On : Toggle::Auto;
+  // --quiet and --verbose exclude --progress (command_line.cpp).
+  if (!args.quiet && !args.verbose) hooks.progress_style = parse_progress_style(args.progress);
   const RelaxOutcome outcome = relax(request, hooks);
   if (!outcome.error.empty())
     std::cerr << "xshell: error: " << outcome.error << "\n";

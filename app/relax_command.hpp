@@ -14,6 +14,7 @@ struct RelaxArguments {
   std::optional<std::string> init;    // a state.json to start from
   bool quiet = false;                 // no progress lines
   bool verbose = false;               // progress lines even when stderr is not a terminal
+  std::string progress = "auto";      // --progress: auto | text | plain | json | off
   double grace = 10.0;  // seconds an iteration may go on after SIGINT/SIGTERM (then the last
                         // written step's state is saved and the run ends)
 };

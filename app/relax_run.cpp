@@ -13,6 +13,7 @@
 #include "deploy_run.hpp"
 #include "engineering_outputs.hpp"
 #include "exit_status.hpp"
+#include "heap_settings.hpp"
 #include "integrators/common/linkage_objective.hpp"
 #include "integrators/stability/branch_bias.hpp"
 #include "io/fabrication_file.hpp"
@@ -25,6 +26,7 @@
 #include "linkage/rigid_motions.hpp"
 #include "output_folder.hpp"
 #include "run_outputs.hpp"
+#include "scoped_seconds.hpp"
 #include "solver_runs.hpp"
 
 namespace xshell {
@@ -111,10 +113,11 @@ Config read_configuration(const RelaxRequest& request) {
   return config;
 }
 
-bool progress_enabled(Toggle asked, const Config& config) {
-  if (asked != Toggle::Auto) return asked == Toggle::On;
-  if (config.output.progress != Toggle::Auto) return config.output.progress == Toggle::On;
-  return isatty(STDERR_FILENO) != 0;
+ProgressStyle progress_style(const RelaxHooks& hooks, const Config& config) {
+  std::optional<ProgressStyle> asked = hooks.progress_style;
+  if (!asked && hooks.progress != Toggle::Auto)
+    asked = hooks.progress == Toggle::On ? ProgressStyle::Text : ProgressStyle::Off;
+  return resolve_progress(asked, config.output.progress, isatty(STDERR_FILENO) != 0);
 }
 
 // Rigid motions that no support holds.
@@ -168,7 +171,8 @@ RunSummary start_summary(const LoadedRun& run) {
 // Runs the deployment or the solver, recording into the summary's history
 // and the outputs (if any). The solvers stop on *hooks.stop or an output
 // failure.
-SolverRun solve(LoadedRun& run, const RelaxHooks& hooks, RunOutputs* outputs, RunSummary& summary) {
+SolverRun solve(LoadedRun& run, const RelaxHooks& hooks, RunOutputs* outputs, RunSummary& summary,
+                RunProgress& progress, double& output_seconds) {
   std::atomic<bool> halt{false};
   size_t reported = 0;  // history records passed to hooks.on_iteration
   RunHooks run_hooks;
@@ -186,7 +190,8 @@ SolverRun solve(LoadedRun& run, const RelaxHooks& hooks, RunOutputs* outputs, Ru
   };
   run_hooks.stop = &halt;
   run_hooks.history = &summary.history;
-  run_hooks.progress = progress_enabled(hooks.progress, run.config);
+  run_hooks.progress = &progress;
+  run_hooks.output_seconds = &output_seconds;
   run_hooks.messages = hooks.log != nullptr;
   run_hooks.warn = [&](const std::string& text) {
     warn(run, text);
@@ -263,12 +268,22 @@ void record_result(const SolverRun& solved, bool interrupted, const std::string&
 // output failed) into the summary, and their files into `dir` unless it is
 // empty. Returns an output failure (empty: none); a failure of the
 // computation is a warning.
-std::string record_engineering(LoadedRun& run, const fs::path& dir, RunSummary& summary) {
+std::string record_engineering(LoadedRun& run, const fs::path& dir, RunSummary& summary,
+                               RunProgress& progress) {
   try {
-    if (dir.empty())
-      engineering_results(*run.problem, run.config, run.setup.origin, summary);
-    else
-      write_engineering_results(*run.problem, run.config, run.setup.origin, dir, summary);
+    EngineeringSnapshot snapshot;
+    {
+      const ScopedSeconds timer(&summary.timings.analysis);
+      snapshot = engineering_results(
+          *run.problem, run.config, run.setup.origin, summary, [&](const StabilityProgress& p) {
+            if (p.iteration == 0)
+              progress.phase("analysis", p.stage);
+            else
+              progress.sample({"analysis", p.stage, p.iteration, p.energy, p.gradient}, true);
+          });
+    }
+    const ScopedSeconds timer(&summary.timings.output);
+    if (!dir.empty()) write_engineering_files(snapshot, run.config, dir);
   } catch (const OutputError& e) {
     return e.what();
   } catch (const std::exception& e) {
@@ -284,23 +299,28 @@ std::string record_engineering(LoadedRun& run, const fs::path& dir, RunSummary& 
 // failure (empty: none); later outputs are still tried so that the state
 // and the summary are written whenever they can be.
 std::string write_final_outputs(LoadedRun& run, const SolverRun& solved, RunOutputs* outputs,
-                                RunSummary& summary, std::chrono::steady_clock::time_point start) {
+                                RunSummary& summary, RunProgress& progress) {
   const fs::path dir = output_directory(run);
   std::string error = outputs && outputs->failed() ? outputs->error() : solved.output_error;
   const bool complete = summary.converged && !summary.interrupted && error.empty();
-  if (complete) error = record_engineering(run, dir, summary);
-  summary.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!outputs) return error;
-  outputs->finish(summary);
-  if (error.empty() && outputs->failed()) error = outputs->error();
-  if (complete && error.empty()) {
-    try {
-      write_fabrication(run.problem->linkage(), fabrication_units(run.config), dir);
-    } catch (const OutputError& e) {
-      error = e.what();
+  if (complete) error = record_engineering(run, dir, summary, progress);
+  if (outputs) {
+    progress.phase("output");
+    const ScopedSeconds timer(&summary.timings.output);
+    outputs->finish_series_and_state();
+    if (error.empty() && outputs->failed()) error = outputs->error();
+    if (complete && error.empty()) {
+      try {
+        write_fabrication(run.problem->linkage(), fabrication_units(run.config), dir);
+      } catch (const OutputError& e) {
+        error = e.what();
+      }
     }
   }
+  summary.wall_seconds = progress.elapsed();
+  if (!outputs) return error;
+  outputs->write_summary(summary);
+  if (error.empty() && outputs->failed()) error = outputs->error();
   return error;
 }
 
@@ -356,9 +376,12 @@ std::string open_outputs(const LoadedRun& run, std::optional<OutputFolderLock>& 
 void load_run(const RelaxRequest& request, LoadedRun& run) {
   Config& config = run.config;
   try {
+    ScopedSeconds load(nullptr);
     config = read_configuration(request);
     run.write_files = request.write_files;
     const LineGraph graph = read_obj(config.linkage);
+    run.load_seconds = load.elapsed();
+    const ScopedSeconds setup(&run.setup_seconds);
     run.setup = make_problem_setup(config, graph);
     RodLinkage linkage(run.setup.graph, run.setup.options);
     if (request.init_text)
@@ -379,6 +402,7 @@ void load_run(const RelaxRequest& request, LoadedRun& run) {
 
 RelaxOutcome relax(const RelaxRequest& request, const RelaxHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
+  keep_freed_heap();
   RelaxOutcome outcome;
   LoadedRun run;
   run.log = hooks.log;
@@ -389,10 +413,14 @@ RelaxOutcome relax(const RelaxRequest& request, const RelaxHooks& hooks) {
     outcome.error = e.what();
     return outcome;
   }
+  RunProgress progress(progress_style(hooks, run.config), start);
   outcome.directory = output_directory(run);
   std::optional<OutputFolderLock> lock;
   std::optional<RunOutputs> outputs;
-  outcome.error = open_outputs(run, lock, outputs);
+  {
+    const ScopedSeconds timer(&run.setup_seconds);
+    outcome.error = open_outputs(run, lock, outputs);
+  }
   if (!outcome.error.empty()) {
     outcome.exit_status = kExitOutputFailed;
     return outcome;
@@ -400,6 +428,8 @@ RelaxOutcome relax(const RelaxRequest& request, const RelaxHooks& hooks) {
   RunOutputs* out = outputs ? &*outputs : nullptr;
   const FreeMotions motions = check_supports(request.init || request.init_text, run);
   RunSummary summary = start_summary(run);
+  summary.timings.load = run.load_seconds;
+  summary.timings.setup = run.setup_seconds;
   const std::atomic<bool> never{false};
   const std::atomic<bool>& stop = hooks.stop ? *hooks.stop : never;
   std::atomic<bool> solved_flag{false};
@@ -407,13 +437,20 @@ RelaxOutcome relax(const RelaxRequest& request, const RelaxHooks& hooks) {
   if (request.grace && out)
     watchdog.emplace(watch_grace, *request.grace, std::cref(stop), std::cref(solved_flag),
                      start_summary(run), std::ref(*out));
-  const SolverRun solved = solve(run, hooks, out, summary);
+  double solve_output = 0.0;  // seconds of the outputs written during the solve
+  progress.phase(run.config.deployment ? "deploy" : "solve");
+  const ScopedSeconds solving(nullptr);
+  const SolverRun solved = solve(run, hooks, out, summary, progress, solve_output);
+  solve_output += out ? out->seconds() : 0.0;
+  summary.timings.solve = std::max(0.0, solving.elapsed() - solve_output);
+  summary.timings.output = solve_output;
   solved_flag = true;
   if (watchdog) watchdog->join();
   const bool interrupted = solved.result.status == SolveStatus::Interrupted && stop.load();
   const std::string output_error = out && out->failed() ? out->error() : solved.output_error;
   record_result(solved, interrupted, output_error, motions, run, summary);
-  outcome.error = write_final_outputs(run, solved, out, summary, start);
+  outcome.error = write_final_outputs(run, solved, out, summary, progress);
+  progress.finish(summary.status, summary.timings, summary.wall_seconds);
   if (request.keep_state) outcome.state = state_text(run.problem->linkage(), run.setup.origin);
   if (!outcome.error.empty())
     outcome.exit_status = kExitOutputFailed;

@@ -22,6 +22,7 @@
 #include "io/problem_setup.hpp"
 #include "io/summary_file.hpp"
 #include "linkage/statics_problem.hpp"
+#include "run_progress.hpp"
 #include "run_warnings.hpp"
 
 namespace xshell {
@@ -55,9 +56,12 @@ struct RelaxHooks {
   // After every iteration, with each record of the summary's history made
   // since the last call (none at the start): may raise *stop.
   std::function<void(const std::vector<IterationRecord>& records)> on_iteration;
-  // Progress lines on stderr: On, Off, or Auto: as the configuration's
-  // output.progress says (its "auto": when stderr is a terminal).
+  // Progress on stderr (run_progress.hpp): On (text lines), Off, or Auto:
+  // as the configuration's output.progress says (its "auto": text lines on a
+  // terminal, plain lines at a low rate without one). `progress_style`,
+  // when given, is taken instead (`--progress`).
   Toggle progress = Toggle::Off;
+  std::optional<ProgressStyle> progress_style;
   // "xshell: ..." lines (warnings, the default pin, a deployment's outcome), or none.
   std::ostream* log = nullptr;
 };
@@ -71,7 +75,9 @@ struct LoadedRun {
   std::vector<FarSupport> far_supports;  // given supports that start far from where they hold
   std::vector<std::string> warnings;     // said in the log, kept for the summary
   std::ostream* log = nullptr;
-  bool write_files = true;  // into config.output.directory (RelaxRequest::write_files)
+  bool write_files = true;     // into config.output.directory (RelaxRequest::write_files)
+  double load_seconds = 0.0;   // reading the configuration and the linkage
+  double setup_seconds = 0.0;  // building the model and the problem
 };
 
 // Reads the configuration, the linkage and the state to start from, and

@@ -5,6 +5,7 @@
 #include "io/output_error.hpp"
 #include "io/state_file.hpp"
 #include "io/vtk/linkage_snapshot.hpp"
+#include "scoped_seconds.hpp"
 
 namespace xshell {
 
@@ -27,6 +28,7 @@ RunOutputs::RunOutputs(const fs::path& dir, const Config& config, const LinkageP
 void RunOutputs::step(double time, bool force) {
   if (failed() || (!force && time == last_time_)) return;
   if (force && time == last_time_) return;  // already written
+  const ScopedSeconds timer(&seconds_);
   try {
     if (series_->write(linkage_snapshot(problem_.linkage(), origin_, time), force)) {
       last_time_ = time;
@@ -55,11 +57,18 @@ void RunOutputs::step(double time, bool force) {
   }
 }
 
-void RunOutputs::finish(const RunSummary& summary) {
+void RunOutputs::finish_series_and_state() {
   try {
     series_->close();
     write_state((dir_ / "state.json").string(), problem_.linkage(), origin_);
-    write_summary((dir_ / "summary.json").string(), summary);
+  } catch (const std::exception& e) {
+    if (!failed()) error_ = e.what();
+  }
+}
+
+void RunOutputs::write_summary(const RunSummary& summary) {
+  try {
+    xshell::write_summary((dir_ / "summary.json").string(), summary);
   } catch (const std::exception& e) {
     if (!failed()) error_ = e.what();
   }
@@ -77,7 +86,7 @@ bool RunOutputs::save_last_written(RunSummary started, const std::string& reason
     for (auto& v : started.vertices) v += origin_;
     started.opening_angles = last_written_->opening_angles;
     write_state((dir_ / "state.json").string(), last_written_->linkage, origin_);
-    write_summary((dir_ / "summary.json").string(), started);
+    xshell::write_summary((dir_ / "summary.json").string(), started);
   } catch (const std::exception& e) {
     if (log_) *log_ << "xshell: error: " << e.what() << "\n";
     return false;

@@ -31,8 +31,13 @@ class RunOutputs {
   // A step of the run; force for the first and final states.
   void step(double time, bool force);
 
-  // The closed series, state.json and summary.json.
-  void finish(const RunSummary& summary);
+  // The closed series and state.json, then summary.json (last, so that it
+  // can hold the time the others took).
+  void finish_series_and_state();
+  void write_summary(const RunSummary& summary);
+
+  // Wall seconds spent in step() so far.
+  double seconds() const { return seconds_; }
 
   // From another thread, while the solver still runs (a signal's grace
   // period is over): writes the state of the last written VTK step and a
@@ -61,6 +66,7 @@ class RunOutputs {
   std::mutex last_written_mutex_;
   std::optional<LastWritten> last_written_;
   int warned_thinnings_ = 0;
+  double seconds_ = 0.0;
   std::string error_;
 };
 

@@ -45,6 +45,14 @@ void print_progress(const DynamicsReport& r, bool nested) {
                r.gradient_measure);
 }
 
+ProgressSample progress_sample(const NewtonReport& r, const std::string& phase) {
+  return {phase, "newton", r.iteration, r.energy, r.gradient_measure};
+}
+
+ProgressSample progress_sample(const DynamicsReport& r, const std::string& phase) {
+  return {phase, "dynamics", r.step, r.energy, r.gradient_measure};
+}
+
 IterationRecord history_record(const NewtonReport& r, long iteration, double time) {
   return {iteration, time, r.energy, r.gradient_measure, r.step_norm, 0.0, r.seconds};
 }
@@ -61,7 +69,8 @@ template <class Report>
 std::function<void(const Report&)> record_reports(const RunHooks& hooks) {
   return [&hooks](const Report& r) {
     hooks.history->push_back(history_record(r, report_number(r), report_time(r)));
-    if (hooks.progress) print_progress(r, false);
+    if (hooks.progress->every_iteration()) print_progress(r, false);
+    hooks.progress->sample(progress_sample(r, "solve"));
     if (report_number(r) > 0) hooks.snapshot(report_time(r), false);
     hooks.poll();
   };
@@ -100,7 +109,9 @@ SolverRun run_kinetic_damping(const SolverOptions& solver, Objective& objective,
                                 r.step_norm, r.kinetic_energy, r.seconds});
     // Thousands of iterations: a progress line every 100, and at resets of
     // the first 100.
-    if (hooks.progress && (r.iteration % 100 == 0 || (r.reset && r.iteration < 100)))
+    hooks.progress->sample({"solve", "kinetic-damping", r.iteration, r.energy, r.gradient_measure});
+    if (hooks.progress->every_iteration() &&
+        (r.iteration % 100 == 0 || (r.reset && r.iteration < 100)))
       std::fprintf(
           stderr,
           "kinetic-damping %7ld  energy %.10e  kinetic %.3e  gradient %.3e  resets %ld  %.3f s\n",

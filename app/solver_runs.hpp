@@ -19,6 +19,7 @@
 #include "integrators/newton/newton.hpp"
 #include "io/config.hpp"
 #include "io/summary_file.hpp"
+#include "run_progress.hpp"
 
 namespace xshell {
 
@@ -29,8 +30,11 @@ struct RunHooks {
                                // failure
   const std::atomic<bool>* stop = nullptr;          // the solvers stop once it is raised
   std::vector<IterationRecord>* history = nullptr;  // the summary's history
-  bool progress = false;                            // progress lines on stderr
+  RunProgress* progress = nullptr;                  // progress on stderr (never null in a run)
   bool messages = true;  // the run's other lines on stderr (a deployment's outcome, a skipped plot)
+  // Seconds the run's own outputs took (deployment.csv, deployment.png),
+  // added up here: the summary's timings count them as output, not solve.
+  double* output_seconds = nullptr;
   // Says a warning (without the "xshell: warning: " prefix) on stderr and
   // keeps it for the summary's warnings.
   std::function<void(const std::string&)> warn;
@@ -59,6 +63,10 @@ SolverRun run_solver(const Config& config, Objective& objective, const RunHooks&
 // the deployment prints them, indented under its step lines.
 void print_progress(const NewtonReport& report, bool nested);
 void print_progress(const DynamicsReport& report, bool nested);
+
+// A report as a progress sample of `phase`.
+ProgressSample progress_sample(const NewtonReport& report, const std::string& phase);
+ProgressSample progress_sample(const DynamicsReport& report, const std::string& phase);
 
 // The history's record of a report, numbered `iteration` at `time`.
 IterationRecord history_record(const NewtonReport& report, long iteration, double time);

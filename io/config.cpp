@@ -316,6 +316,16 @@ OutputOptions read_output(const JsonField* f, const std::string& base_dir) {
   return o;
 }
 
+AnalysisOptions read_analysis(const JsonField& f) {
+  f.check_keys({"modes", "buckling", "max_seconds"});
+  AnalysisOptions a;
+  if (auto modes = f.find("modes")) a.modes = at_least(*modes, 0);
+  if (auto buckling = f.find("buckling")) a.buckling = buckling->boolean();
+  if (auto seconds = f.find("max_seconds"))
+    a.max_seconds = seconds->is_null() ? std::nullopt : std::optional<double>(positive(*seconds));
+  return a;
+}
+
 Deployment read_deployment(const JsonField& f) {
   f.check_keys({"average_opening_angle", "joint_angles", "steps"});
   Deployment d;
@@ -382,7 +392,8 @@ Config parse_config(const std::string& text, const std::string& name, const std:
   if (!document.is_object())
     root.fail("the configuration must be a JSON object { ... }, got " + root.describe());
   root.check_keys({"linkage", "subdivisions", "rest_shape", "joints", "material", "rods",
-                   "supports", "loads", "solver", "output", "deployment", "transform", "units"});
+                   "supports", "loads", "solver", "output", "deployment", "transform", "units",
+                   "analysis"});
   Config c;
   c.source = shown;
   c.linkage = file_path(root.require("linkage"), base_dir);
@@ -399,6 +410,7 @@ Config parse_config(const std::string& text, const std::string& name, const std:
   c.output = read_output(output ? &*output : nullptr, base_dir);
   if (auto deployment = root.find("deployment")) c.deployment = read_deployment(*deployment);
   if (auto units = root.find("units")) c.units = read_units(*units);
+  if (auto analysis = root.find("analysis")) c.analysis = read_analysis(*analysis);
   return c;
 }
 
@@ -529,7 +541,12 @@ nlohmann::json to_json(const Config& c) {
         {"max_steps", c.output.max_steps},
         {"format", name_of(c.output.format, kFormats)},
         {"solids", toggle_json(c.output.solids)},
-        {"progress", toggle_json(c.output.progress)}}}};
+        {"progress", toggle_json(c.output.progress)}}},
+      {"analysis",
+       {{"modes", c.analysis.modes},
+        {"buckling", c.analysis.buckling},
+        {"max_seconds", c.analysis.max_seconds ? nlohmann::json(*c.analysis.max_seconds)
+                                               : nlohmann::json(nullptr)}}}};
   if (!c.transform.is_identity()) j["transform"] = transform_json(c.transform);
   if (!c.units.length.empty()) j["units"]["length"] = c.units.length;
   if (!c.units.force.empty()) j["units"]["force"] = c.units.force;

@@ -226,6 +226,16 @@ struct OutputOptions {
                                    // when the output is a terminal)
 };
 
+// "analysis": the stability analysis of a converged state (the engineering
+// results' lowest_eigenvalues and buckling_load_factor).
+struct AnalysisOptions {
+  int modes = 6;         // "modes", >= 0, default 6: eigenpairs computed
+  bool buckling = true;  // "buckling", default true: the buckling load factor (under loads)
+  // "max_seconds", > 0 or null (no limit), default 300: the analysis' time
+  // budget; what it has not finished then is reported "time_limit".
+  std::optional<double> max_seconds = 300.0;
+};
+
 // An element of "deployment.joint_angles".
 struct JointAngle {
   int vertex = 0;    // "vertex", >= 0, required
@@ -260,6 +270,7 @@ struct Config {
   Loads loads;                               // "loads"
   SolverOptions solver;                      // "solver"
   OutputOptions output;                      // "output"
+  AnalysisOptions analysis;                  // "analysis"
   std::optional<Deployment> deployment;      // "deployment", optional
   UnitNames units;  // "units", default none: {"length": "mm", "force": "N"}, each optional, 1 to
                     // 16 characters without spaces, "/", "^", "[" or "]": the names of the

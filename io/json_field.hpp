@@ -52,6 +52,7 @@ class JsonField {
   // Scalars.
   bool is_string() const { return value_->is_string(); }
   bool is_boolean() const { return value_->is_boolean(); }
+  bool is_null() const { return value_->is_null(); }
   double number() const;  // finite
   int integer() const;    // a number with an integer value that fits an int
   bool boolean() const;

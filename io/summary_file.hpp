@@ -13,7 +13,8 @@
 //   solver            "newton" | "dynamics" | "kinetic-damping"
 //   iterations        Newton iterations, dynamics steps or kinetic-damping (leapfrog) iterations
 //   simulated_time    dynamics only
-//   wall_seconds
+//   wall_seconds      from the start of the run to the writing of summary.json
+//   timings           {load, setup, solve, analysis, output}: seconds of each phase (RunTimings)
 //   unknowns, free_unknowns
 //   gradient_norm     the dimensionless convergence measure (max scaled free gradient)
 //   gradient_tolerance
@@ -77,6 +78,20 @@ struct IterationRecord {
   double seconds = 0.0;
 };
 
+// The "timings" object: wall seconds of the run's phases, which do not
+// overlap, so that they add up to at most wall_seconds. load: reading the
+// configuration and the linkage file; setup: building the model and the
+// problem (and the --init state), opening the output folder; solve: the
+// solver or the deployment, without the writing of its outputs; analysis:
+// the engineering results of a converged state (stability, buckling);
+// output: the VTK steps, deployment.csv and .png, the engineering files,
+// the fabrication data, the closed series and state.json (summary.json's
+// own writing, which holds these numbers, is not counted).
+struct RunTimings {
+  double load = 0.0, setup = 0.0, solve = 0.0, analysis = 0.0, output = 0.0;
+  double total() const { return load + setup + solve + analysis + output; }
+};
+
 // An element of "saddles_escaped" (see above).
 struct SaddleSummary {
   double energy = 0.0;
@@ -109,6 +124,7 @@ struct RunSummary {
   long iterations = 0;
   std::optional<double> simulated_time;
   double wall_seconds = 0.0;
+  RunTimings timings;
   int unknowns = 0, free_unknowns = 0;
   double gradient_norm = 0.0, gradient_tolerance = 0.0;
   EnergyReport energy;

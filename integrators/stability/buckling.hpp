@@ -25,6 +25,8 @@
 #include <Eigen/SparseCore>
 #include <string>
 
+#include "integrators/stability/analysis_deadline.hpp"
+
 namespace xshell {
 
 enum class BucklingStatus {
@@ -32,11 +34,13 @@ enum class BucklingStatus {
   NoBuckling,        // the loads never make K(lambda) singular for lambda > 0
   UnloadedUnstable,  // K_0 is not positive definite (a mechanism or unstable without loads)
   NotConverged,      // the eigensolver did not converge
+  TimeLimit,         // options.deadline passed first ("time_limit")
 };
 
 struct BucklingOptions {
   double tolerance = 1e-10;  // Spectra's relative tolerance
   int max_restarts = 1000;
+  AnalysisDeadline deadline;  // past it: status TimeLimit
 };
 
 struct BucklingResult {
@@ -46,9 +50,13 @@ struct BucklingResult {
 };
 
 // K0, KL: n x n symmetric (both triangles), the same free unknowns.
+// solver: the CHOLMOD solver to factorize K0 with (its symbolic analysis is
+// reused when K0 has the pattern it last saw), or nullptr for its own.
+class CholeskySolver;
 BucklingResult linearized_buckling(const Eigen::SparseMatrix<double>& K0,
                                    const Eigen::SparseMatrix<double>& KL,
-                                   const BucklingOptions& options = {});
+                                   const BucklingOptions& options = {},
+                                   CholeskySolver* solver = nullptr);
 
 const char* buckling_status_name(BucklingStatus status);
 

@@ -18,8 +18,8 @@ class MassWeightedShiftSolve {
  public:
   using Scalar = double;
   MassWeightedShiftSolve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
-                         CholeskySolver& solver)
-      : H_(H), mass_(mass), root_(mass.cwiseSqrt()), solver_(solver) {}
+                         CholeskySolver& solver, const AnalysisDeadline& deadline)
+      : H_(H), mass_(mass), root_(mass.cwiseSqrt()), solver_(solver), deadline_(deadline) {}
   Eigen::Index rows() const { return H_.rows(); }
   Eigen::Index cols() const { return H_.cols(); }
   // The factorization of H - sigma M is made before (find_shift) for the
@@ -28,6 +28,7 @@ class MassWeightedShiftSolve {
     if (sigma != factorized_shift_) factorize(sigma);
   }
   bool factorize(double sigma) {
+    deadline_.check();
     const Eigen::VectorXd shift = -sigma * mass_;
     factorized_shift_ = sigma;
     return solver_.factorize(H_, &shift) == FactorizationStatus::PositiveDefinite;
@@ -35,6 +36,7 @@ class MassWeightedShiftSolve {
   void perform_op(const double* x_in, double* y_out) const {
     Eigen::Map<const Eigen::VectorXd> x(x_in, rows());
     Eigen::Map<Eigen::VectorXd> y(y_out, rows());
+    deadline_.check();
     const Eigen::VectorXd b = root_.cwiseProduct(x);
     y = root_.cwiseProduct(solver_.solve(b));
   }
@@ -44,6 +46,7 @@ class MassWeightedShiftSolve {
   const Eigen::VectorXd& mass_;
   Eigen::VectorXd root_;
   CholeskySolver& solver_;
+  const AnalysisDeadline& deadline_;
   double factorized_shift_ = std::nan("");
 };
 
@@ -63,22 +66,12 @@ EigenModes dense_modes(const Eigen::SparseMatrix<double>& H, const Eigen::Vector
   return out;
 }
 
-}  // namespace
-
-EigenModes lowest_eigenmodes(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
-                             const EigenModesOptions& options, CholeskySolver* reused) {
+// Shift-invert Lanczos (the header's method). Throws DeadlinePassed.
+EigenModes lanczos_modes(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
+                         const EigenModesOptions& options, int count, CholeskySolver& solver) {
   const int n = static_cast<int>(H.rows());
-  const int count = std::min(options.count, n);
   EigenModes out;
-  if (count <= 0) {
-    out.converged = true;
-    return out;
-  }
-  if (n <= 4 * count + 20) return dense_modes(H, mass, count);
-
-  CholeskySolver own;
-  CholeskySolver& solver = reused ? *reused : own;
-  MassWeightedShiftSolve op(H, mass, solver);
+  MassWeightedShiftSolve op(H, mass, solver, options.deadline);
   double sigma = 0.0;
   if (!op.factorize(sigma)) {
     const double scale = H.norm() / mass.norm();
@@ -106,6 +99,28 @@ EigenModes lowest_eigenmodes(const Eigen::SparseMatrix<double>& H, const Eigen::
   out.values = eigs.eigenvalues();
   out.vectors = mass.cwiseSqrt().cwiseInverse().asDiagonal() * eigs.eigenvectors();
   return out;
+}
+
+}  // namespace
+
+EigenModes lowest_eigenmodes(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
+                             const EigenModesOptions& options, CholeskySolver* reused) {
+  const int n = static_cast<int>(H.rows());
+  const int count = std::min(options.count, n);
+  if (count <= 0) {
+    EigenModes out;
+    out.converged = true;
+    return out;
+  }
+  if (n <= 4 * count + 20) return dense_modes(H, mass, count);
+  CholeskySolver own;
+  try {
+    return lanczos_modes(H, mass, options, count, reused ? *reused : own);
+  } catch (const DeadlinePassed&) {
+    EigenModes out;
+    out.reason = kTimeLimit;
+    return out;
+  }
 }
 
 }  // namespace xshell

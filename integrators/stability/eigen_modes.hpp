@@ -22,17 +22,20 @@
 #include <Eigen/SparseCore>
 #include <string>
 
+#include "integrators/stability/analysis_deadline.hpp"
+
 namespace xshell {
 
 struct EigenModesOptions {
-  int count = 6;             // eigenpairs wanted (fewer when n is smaller)
-  double tolerance = 1e-10;  // Spectra's relative tolerance on the Ritz values
-  int max_restarts = 1000;   // Lanczos restarts
+  int count = 6;              // eigenpairs wanted (fewer when n is smaller)
+  double tolerance = 1e-10;   // Spectra's relative tolerance on the Ritz values
+  int max_restarts = 1000;    // Lanczos restarts
+  AnalysisDeadline deadline;  // past it: not converged, reason "time_limit"
 };
 
 struct EigenModes {
   bool converged = false;
-  std::string reason;       // why not, when not
+  std::string reason;       // why not, when not ("time_limit": options.deadline passed)
   Eigen::VectorXd values;   // ascending, size k
   Eigen::MatrixXd vectors;  // n x k, M-orthonormal columns
   double shift = 0.0;       // sigma used

@@ -1,6 +1,9 @@
 #include "integrators/stability/stability_analysis.hpp"
 
+#include <atomic>
+
 #include "integrators/common/linkage_objective.hpp"
+#include "integrators/linear_algebra/cholesky_solver.hpp"
 
 namespace xshell {
 
@@ -16,14 +19,28 @@ bool has_loads(const LinkageProblem& problem) {
 }  // namespace
 
 StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOptions& options) {
+  auto report = [&](const StabilityProgress& p) {
+    if (options.on_progress) options.on_progress(p);
+  };
   StabilityAnalysis out;
   const Eigen::SparseMatrix<double> loaded_hessian = problem.free_hessian();
-  out.modes = lowest_eigenmodes(loaded_hessian, problem.free_mass(), options.modes);
+  // One CHOLMOD solver for H - sigma M and K_0: the same pattern, one
+  // symbolic analysis.
+  CholeskySolver solver;
+  report({"eigen_modes"});
+  EigenModesOptions modes = options.modes;
+  modes.deadline = options.deadline;
+  out.modes = lowest_eigenmodes(loaded_hessian, problem.free_mass(), modes, &solver);
   out.loaded = has_loads(problem);
   if (!options.buckling || !out.loaded) {
     out.buckling.status = BucklingStatus::NoBuckling;
     return out;
   }
+  if (options.deadline.passed()) {
+    out.buckling.status = BucklingStatus::TimeLimit;
+    return out;
+  }
+  report({"unloaded_equilibrium"});
   // The same supports; the default pin is chosen again (the same joint) and
   // holds that joint where it is, as it did in `problem`.
   StaticsSetup unloaded_setup;
@@ -35,14 +52,29 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
   // never replaced by another equilibrium found past it.
   NewtonOptions unloaded_newton = options.unloaded_newton;
   unloaded_newton.escape.enabled = false;
-  const NewtonResult relaxed = solve_newton(objective, unloaded_newton);
+  std::atomic<bool> stop{false};
+  NewtonCallbacks callbacks;
+  callbacks.stop = &stop;
+  callbacks.on_iteration = [&](const NewtonReport& r) {
+    if (r.iteration > 0)
+      report({"unloaded_equilibrium", r.iteration, r.energy, r.gradient_measure});
+    if (options.deadline.passed()) stop = true;
+  };
+  const NewtonResult relaxed = solve_newton(objective, unloaded_newton, callbacks);
   out.unloaded_converged = relaxed.converged();
   out.unloaded_reason = relaxed.reason;
+  if (!out.unloaded_converged && stop.load()) {
+    out.buckling.status = BucklingStatus::TimeLimit;
+    return out;
+  }
   if (!out.unloaded_converged || unloaded.num_free() != problem.num_free()) {
     out.buckling.status = BucklingStatus::UnloadedUnstable;
     return out;
   }
-  out.buckling = linearized_buckling(unloaded.free_hessian(), loaded_hessian);
+  report({"buckling"});
+  BucklingOptions buckling;
+  buckling.deadline = options.deadline;
+  out.buckling = linearized_buckling(unloaded.free_hessian(), loaded_hessian, buckling, &solver);
   return out;
 }
 

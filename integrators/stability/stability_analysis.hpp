@@ -6,6 +6,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,10 +18,23 @@
 
 namespace xshell {
 
+// Where the analysis is: the start of each stage ("eigen_modes",
+// "unloaded_equilibrium", "buckling") with iteration 0, and each Newton
+// iteration of the unloaded equilibrium.
+struct StabilityProgress {
+  std::string stage;
+  long iteration = 0;
+  std::optional<double> energy, gradient;
+};
+
 struct StabilityOptions {
   EigenModesOptions modes;        // how many eigenpairs (default 6)
   bool buckling = true;           // also the buckling load factor (one more Newton solve)
   NewtonOptions unloaded_newton;  // for the unloaded equilibrium (its escape is never used)
+  // The whole analysis' budget: the stage running when it passes stops with
+  // the status "time_limit", and the later ones are skipped (the same).
+  AnalysisDeadline deadline;
+  std::function<void(const StabilityProgress&)> on_progress;  // optional
 };
 
 struct StabilityAnalysis {
@@ -27,7 +42,8 @@ struct StabilityAnalysis {
   bool loaded = false;              // some load acts (else no buckling analysis)
   bool unloaded_converged = false;  // the unloaded equilibrium was found
   std::string unloaded_reason;
-  BucklingResult buckling;  // status UnloadedUnstable also when not converged
+  BucklingResult buckling;  // status UnloadedUnstable also when not converged; TimeLimit
+                            // also when the deadline passed before it or in the Newton solve
 };
 
 // problem: at its (loaded) equilibrium; its Hessian is reassembled.

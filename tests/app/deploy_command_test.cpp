@@ -133,6 +133,14 @@ TEST_CASE(
     // One VTK snapshot per step: 5 times, 3 parts each (rods, frames, joints).
     const std::string pvd = read_text(dir / "out" / "series.pvd");
     CHECK(count(pvd, "timestep=") == 15);
+    // Each step's time is its average opening angle (the rods' entries).
+    for (size_t k = 0; k < t.rows.size(); ++k) {
+      const std::string rods = "part=\"0\" name=\"rods\" file=\"rods_00000" + std::to_string(k);
+      const size_t at = pvd.find(rods);
+      REQUIRE(at != std::string::npos);
+      const size_t open = pvd.rfind("timestep=\"", at) + 10;
+      CHECK(std::stod(pvd.substr(open)) == doctest::Approx(std::stod(t.rows[k][1])));
+    }
     CHECK(fs::exists(dir / "out" / "rods_000004.vtp"));
     if (matplotlib_available()) {
       CHECK(fs::exists(dir / "out" / "deployment.png"));
