@@ -27,14 +27,15 @@ constexpr const char* kPlot = "deployment.png";
 constexpr const char* kCompleted = "completed";
 constexpr const char* kHeader =
     "step,average_angle,energy_total,energy_stretching,energy_bending,energy_twisting,torque,"
-    "iterations,stable,min_opening_angle,max_opening_angle\n";
+    "iterations,stable,min_opening_angle,max_opening_angle,factorizations\n";
 
 std::string table_row(const DeploymentStep& s) {
   char text[400];
-  std::snprintf(text, sizeof text, "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%ld,%s,%.17g,%.17g\n",
-                s.step, s.average_angle, s.energy.total(), s.energy.stretching, s.energy.bending,
+  std::snprintf(text, sizeof text,
+                "%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%ld,%s,%.17g,%.17g,%ld\n", s.step,
+                s.average_angle, s.energy.total(), s.energy.stretching, s.energy.bending,
                 s.energy.twisting, s.torque, s.iterations, s.stable ? "true" : "false",
-                s.min_opening_angle, s.max_opening_angle);
+                s.min_opening_angle, s.max_opening_angle, s.factorizations);
   return text;
 }
 

@@ -15,7 +15,9 @@
 #include "integrators/deployment/average_constraint.hpp"
 #include "integrators/deployment/constrained_newton.hpp"
 #include "integrators/deployment/constrained_objective.hpp"
+#include "integrators/deployment/path_predictor.hpp"
 #include "integrators/stability/branch_bias.hpp"
+#include "linkage/frame_free_unknowns.hpp"
 #include "linkage/opening_angle_range.hpp"
 
 namespace xshell {
@@ -72,11 +74,13 @@ class Deployer {
     options_.dynamics.escape.bias = constraint_ ? constraint_->restrict(bias) : bias;
     // The constrained Newton solver also computes the tangent predictor.
     if (constraint_ && (options.solver == DeploymentSolver::Newton ||
-                        options.predictor == DeploymentPredictor::Tangent))
+                        options.predictor != DeploymentPredictor::UniformShift))
       constrained_newton_ =
           std::make_unique<ConstrainedNewtonSolver>(objective_, *constraint_, options_.newton);
     if (!constraint_ && options.solver == DeploymentSolver::Newton)
       newton_ = std::make_unique<NewtonSolver>(objective_, options_.newton);
+    const std::vector<bool> frame_free = frame_free_unknowns(linkage);
+    for (int r : problem.free_indices()) comparable_.push_back(frame_free[r]);
     start_twin();
   }
   ~Deployer();
@@ -139,10 +143,13 @@ class Deployer {
       const Eigen::VectorXd q = problem_.free_dofs();
       const double target = average_target(s);
       const double change = target - constraint_->value(q);
-      if (options_.predictor == DeploymentPredictor::Tangent && change != 0.0) {
+      if (options_.predictor != DeploymentPredictor::UniformShift && change != 0.0) {
         const Eigen::VectorXd t = constrained_newton_->tangent();
         if (t.size() == q.size() && t.allFinite()) {
           Eigen::VectorXd predicted = q + change * t;
+          if (options_.predictor == DeploymentPredictor::Quadratic)
+            if (path_.size() == 2)
+              predicted += path_curvature_step(path_[0], path_[1], t, change, comparable_);
           constraint_->project(predicted, target);  // round-off only: a . t = 1
           try {
             problem_.set_free_dofs(predicted);
@@ -270,6 +277,7 @@ class Deployer {
     row.energy = problem_.energy();
     row.torque = a.torque;
     row.iterations = a.solve.iterations;
+    row.factorizations = a.solve.factorizations;
     row.stable = a.solve.stable;
     row.saddles_escaped = static_cast<int>(a.solve.saddles_escaped.size());
     for (SaddleRecord saddle : a.solve.saddles_escaped) {
@@ -280,7 +288,20 @@ class Deployer {
     row.halvings = halvings;
     row.seconds = seconds;
     result_.steps.push_back(row);
+    remember_path_point(step, a);
     if (callbacks_.on_step) callbacks_.on_step(row);
+  }
+
+  // Keeps the accepted equilibrium for the quadratic predictor; a saddle
+  // left in this step, or a branch taken from the twin, jumped off the path
+  // its predecessor was on.
+  void remember_path_point(int step, const Attempt& a) {
+    if (!constraint_) return;
+    const bool jumped = !a.solve.saddles_escaped.empty() || result_.branch_switch_step == step;
+    if (jumped) path_.clear();
+    if (path_.size() == 2) path_.erase(path_.begin());
+    const Eigen::VectorXd q = problem_.free_dofs();
+    path_.push_back({q, constraint_->value(q)});
   }
 
   // The branch choice under loads (DeploymentOptions::follow_unloaded_twin).
@@ -317,7 +338,9 @@ class Deployer {
   std::unique_ptr<NewtonSolver> newton_;
   DeploymentResult result_;
   std::string last_reason_;
-  std::unique_ptr<Twin> twin_;  // while the branch choice follows it
+  std::unique_ptr<Twin> twin_;    // while the branch choice follows it
+  std::vector<PathPoint> path_;   // the last (at most two) equilibria of the path
+  std::vector<bool> comparable_;  // per free unknown: frame_free_unknowns()
 };
 
 // The same problem and plan without the loads' component along the

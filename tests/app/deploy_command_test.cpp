@@ -97,10 +97,10 @@ TEST_CASE(
     const Table t = read_table(dir / "out" / "deployment.csv");
     CHECK(t.header ==
           "step,average_angle,energy_total,energy_stretching,energy_bending,energy_twisting,torque,"
-          "iterations,stable,min_opening_angle,max_opening_angle");
+          "iterations,stable,min_opening_angle,max_opening_angle,factorizations");
     REQUIRE(t.rows.size() == 5);  // step 0 and 4 steps
     for (size_t k = 0; k < t.rows.size(); ++k) {
-      REQUIRE(t.rows[k].size() == 11);
+      REQUIRE(t.rows[k].size() == 12);
       CHECK(std::stoi(t.rows[k][0]) == static_cast<int>(k));
       CHECK(t.rows[k][8] == "true");
       // The average lies between the smallest and the largest angle.
@@ -110,6 +110,11 @@ TEST_CASE(
       CHECK(lo <= average);
       CHECK(hi >= average);
       CHECK(hi < M_PI);
+      // Newton factorizes at least once per iteration; dynamics counts
+      // those of its integrator.
+      const long iterations = std::stol(t.rows[k][7]), factorizations = std::stol(t.rows[k][11]);
+      CHECK(factorizations >= 0);
+      if (std::string(solver) == "newton") CHECK(factorizations >= iterations);
     }
     const double last_angle = std::stod(t.rows.back()[1]),
                  last_torque = std::stod(t.rows.back()[6]);

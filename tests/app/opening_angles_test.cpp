@@ -113,7 +113,7 @@ TEST_CASE("relax: deployment.csv gives each step's smallest and largest opening 
   std::getline(table, header);
   CHECK(header ==
         "step,average_angle,energy_total,energy_stretching,energy_bending,energy_twisting,torque,"
-        "iterations,stable,min_opening_angle,max_opening_angle");
+        "iterations,stable,min_opening_angle,max_opening_angle,factorizations");
   std::vector<std::vector<std::string>> rows;
   for (std::string line; std::getline(table, line);) {
     std::vector<std::string> cells;
@@ -122,7 +122,7 @@ TEST_CASE("relax: deployment.csv gives each step's smallest and largest opening 
     rows.push_back(cells);
   }
   REQUIRE(rows.size() == 3);
-  for (const auto& row : rows) REQUIRE(row.size() == 11);
+  for (const auto& row : rows) REQUIRE(row.size() == 12);
   CHECK(std::stod(rows[0][9]) == doctest::Approx(-0.1).epsilon(1e-9));
   CHECK(std::stod(rows[2][9]) > 0.0);
   CHECK(std::stod(rows[2][10]) < M_PI);

@@ -252,3 +252,37 @@ TEST_CASE("A failing step is halved and retried, the deployment reports a step i
 }
 
 }  // namespace xshell::test
+
+namespace xshell::test {
+
+TEST_CASE("Each predictor lands on the same path; the quadratic one needs the fewest iterations") {
+  std::vector<long> iterations;
+  std::vector<Eigen::VectorXd> ends;
+  for (DeploymentPredictor predictor :
+       {DeploymentPredictor::UniformShift, DeploymentPredictor::Tangent,
+        DeploymentPredictor::Quadratic}) {
+    LinkageProblem problem = dome_problem(5);
+    const double start = average_opening_angle(problem.linkage());
+    DeploymentOptions options = tight(DeploymentSolver::Newton, 1e-9);
+    options.predictor = predictor;
+    const DeploymentResult r = deploy(problem, average_plan(start + 0.6, 12), options);
+    CAPTURE(r.reason);
+    REQUIRE(r.converged());
+    long steps_iterations = 0;  // of the steps after the first two (step 0 has no predictor)
+    for (size_t k = 2; k < r.steps.size(); ++k) steps_iterations += r.steps[k].iterations;
+    iterations.push_back(steps_iterations);
+    Eigen::VectorXd vertices(3 * problem.linkage().graph().vertices.size());
+    for (int v = 0; v < vertices.size() / 3; ++v)
+      vertices.segment<3>(3 * v) = problem.linkage().vertex_position(v);
+    ends.push_back(vertices);
+  }
+  MESSAGE("Newton iterations of steps 2-12: uniform shift "
+          << iterations[0] << ", tangent " << iterations[1] << ", quadratic " << iterations[2]);
+  CHECK(iterations[1] < iterations[0]);
+  CHECK(iterations[2] < iterations[1]);
+  // The same equilibria: the vertices (the unknowns' thetas and omegas
+  // depend on where the solvers rebased).
+  for (const Eigen::VectorXd& end : ends) CHECK((end - ends[0]).cwiseAbs().maxCoeff() <= 1e-9);
+}
+
+}  // namespace xshell::test
