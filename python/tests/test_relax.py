@@ -49,8 +49,9 @@ def test_relax_reproduces_the_command_line(program, sample_config, tmp_path, sol
     assert_same_run(res, summary)
     assert res.exit_status == status
     # The whole summary but for the run's times.
-    for key in set(summary) - {"wall_seconds", "history", "configuration"}:
+    for key in set(summary) - {"wall_seconds", "timings", "history", "configuration"}:
         assert res.summary[key] == summary[key], key
+    assert set(res.summary["timings"]) == set(summary["timings"])
     # The configuration: but for the output folder (--out), the file's.
     del summary["configuration"]["output"]["directory"]
     configuration = dict(res.summary["configuration"])

@@ -113,14 +113,14 @@ TEST_CASE("interrupt: SIGINT during a deployment") {
       SIGINT, "rods_000004.vtp");
   REQUIRE(s.contains("deployment"));
   CHECK(s["deployment"]["status"] == "interrupted");
-  // Every step in the table is complete: all eleven columns.
+  // Every step in the table is complete: all twelve columns.
   const std::string table = read_text(dir / "out" / "deployment.csv");
   int rows = 0;
   std::size_t start = table.find('\n') + 1;
   for (std::size_t end = table.find('\n', start); end != std::string::npos;
        end = table.find('\n', start)) {
     const std::string row = table.substr(start, end - start);
-    CHECK(std::count(row.begin(), row.end(), ',') == 10);
+    CHECK(std::count(row.begin(), row.end(), ',') == 11);
     ++rows;
     start = end + 1;
   }
