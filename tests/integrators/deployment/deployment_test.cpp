@@ -255,7 +255,8 @@ TEST_CASE("A failing step is halved and retried, the deployment reports a step i
 
 namespace xshell::test {
 
-TEST_CASE("Each predictor lands on the same path and the quadratic one needs the fewest iterations") {
+TEST_CASE(
+    "Each predictor lands on the same path and the quadratic one needs the fewest iterations") {
   std::vector<long> iterations;
   std::vector<Eigen::VectorXd> ends;
   for (DeploymentPredictor predictor :
