@@ -209,6 +209,8 @@ RodLinkage::RodLinkage(const LineGraph& graph, const LinkageOptions& options)
   for (int s = 0; s < ns; ++s)
     rods_.push_back(
         build_segment(graph, topology_.segments[s], joints_, segment_material(s), options_, s));
+  if (!options_.segment_rest_lengths.empty())
+    set_segment_rest_lengths(options_.segment_rest_lengths);
   number_unknowns();
   // The joints reproduce the terminal edges and thetas just built.
   set_dofs(dofs());

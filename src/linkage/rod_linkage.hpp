@@ -70,6 +70,10 @@ struct LinkageOptions {
   // half the edge's stretching stiffness and mass. A LinkageProblem's supports
   // must clamp exactly these ends (clamped_free_ends, statics_problem.hpp).
   std::vector<int> clamped_ends;
+  // Per segment (graph edge order): its rest length (segment_rest_lengths()
+  // below), overriding the drawing's; empty: the drawing's. Every edge of the
+  // segment's rod is scaled by the same factor (docs/model.md section 3.8).
+  std::vector<double> segment_rest_lengths;
 };
 
 constexpr int kMinSubdivisions = 3;
@@ -108,6 +112,16 @@ class RodLinkage {
     return options_.segment_materials.empty() ? options_.material : options_.segment_materials[s];
   }
   const Joint& joint(int j) const { return joints_[j]; }
+  // Rest length of each segment (graph edge order): the sum of its edges'
+  // rest lengths weighted by their stretching shares, so that a segment
+  // between two joints measures joint to joint (docs/model.md section 3.8).
+  std::vector<double> segment_rest_lengths() const;
+  // Scales the rest lengths of each segment's edges by one factor so that
+  // its rest length becomes lengths[s]; rest curvatures and twists are kept.
+  // Loads that depend on the rest lengths (dead loads, masses) must be set
+  // up again. Throws ModelError for a wrong count, or a length that is not
+  // positive and finite.
+  void set_segment_rest_lengths(const std::vector<double>& lengths);
 
   // Reduced unknowns.
   int num_dofs() const { return num_dofs_; }
