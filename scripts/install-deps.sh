@@ -6,6 +6,7 @@ packages=(
   build-essential cmake pkg-config clang-format
   libeigen3-dev libsundials-dev libsuitesparse-dev libvtk9-dev
   doctest-dev nlohmann-json3-dev libcli11-dev libspectra-dev
+  coinor-libipopt-dev
   libopenblas0-openmp
   xvfb xauth fonts-dejavu-core
   clang libclang-rt-14-dev
