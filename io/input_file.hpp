@@ -47,6 +47,7 @@ struct InputFileKind {
 constexpr InputFileKind kLinkageFile{"linkage file", kMaxLinkageFileBytes};
 constexpr InputFileKind kConfigurationFile{"configuration file", kMaxConfigurationFileBytes};
 constexpr InputFileKind kStateFile{"state file", kMaxStateFileBytes};
+constexpr InputFileKind kSurfaceFile{"surface file", kMaxLinkageFileBytes};
 
 // The whole content of the regular file at `path`. Throws InputError
 // "<failure>: <reason>" when it cannot be read: it does not exist or may not

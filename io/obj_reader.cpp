@@ -79,9 +79,13 @@ std::from_chars_result parse_number(std::string_view token, T& value) {
 // ---------------------------------------------------------------------------
 // Statements
 
+// What a file describes: a linkage (vertices and 'l' lines) or a surface
+// (vertices and 'f' lines).
+enum class ObjContent { Lines, Faces };
+
 class ObjParser {
  public:
-  explicit ObjParser(const std::string& name) : name_(name) {}
+  ObjParser(const std::string& name, ObjContent content) : name_(name), content_(content) {}
 
   void parse_line(std::string_view text, int line) {
     text = text.substr(0, text.find('#'));
@@ -89,7 +93,8 @@ class ObjParser {
     if (tokens.empty()) return;
     const std::string_view keyword = tokens[0];
     if (keyword == "v") return vertex(tokens, line);
-    if (keyword == "l") return polyline(tokens, line);
+    if (keyword == "l" && content_ == ObjContent::Lines) return polyline(tokens, line);
+    if (keyword == "f" && content_ == ObjContent::Faces) return face(tokens, line);
     static const char* const kSkipped[] = {"o", "g", "s", "vt", "vn", "mtllib", "usemtl"};
     for (const char* skipped : kSkipped)
       if (keyword == skipped) return;
@@ -97,6 +102,11 @@ class ObjParser {
       fail(name_, line,
            "faces ('f') are not allowed: a linkage is a line mesh of vertices ('v') and "
            "rod segments ('l')");
+    if (content_ == ObjContent::Faces)
+      fail(name_, line,
+           "unknown statement " + quoted(keyword) +
+               "; a surface file has 'v' and 'f' lines (comments and o, g, s, vt, vn, mtllib, "
+               "usemtl lines are skipped)");
     fail(name_, line,
          "unknown statement " + quoted(keyword) +
              "; a linkage file has 'v' and 'l' lines (comments and o, g, s, vt, vn, mtllib, "
@@ -106,14 +116,14 @@ class ObjParser {
   // Checks the indices against the final vertex count (a positive index may
   // name a vertex defined further down).
   ObjLineGraph finish() {
-    const int n = static_cast<int>(out_.graph.vertices.size());
     for (std::size_t e = 0; e < out_.graph.edges.size(); ++e)
-      for (int v : out_.graph.edges[e])
-        if (v >= n)
-          fail(name_, out_.edge_lines[e],
-               "vertex index " + std::to_string(v + 1) + " is out of range: the file defines " +
-                   std::to_string(n) + " vertices");
+      for (int v : out_.graph.edges[e]) check_defined(v, out_.edge_lines[e]);
     return std::move(out_);
+  }
+  ObjSurface finish_surface() {
+    for (std::size_t t = 0; t < triangles_.size(); ++t)
+      for (int v : triangles_[t]) check_defined(v, triangle_lines_[t]);
+    return {std::move(out_.graph.vertices), std::move(triangles_)};
   }
 
  private:
@@ -139,7 +149,8 @@ class ObjParser {
              what + " is outside the supported range: coordinates are at most " +
                  number(kMaxCoordinate) + " in absolute value (choose a larger length unit)");
     }
-    if (out_.graph.vertices.size() > static_cast<std::size_t>(kMaxLinkageSegments))
+    if (content_ == ObjContent::Lines &&
+        out_.graph.vertices.size() > static_cast<std::size_t>(kMaxLinkageSegments))
       fail(name_, line,
            "more than " + std::to_string(kMaxLinkageSegments + 1) +
                " vertices: a linkage may have at most " + std::to_string(kMaxLinkageSegments) +
@@ -168,6 +179,27 @@ class ObjParser {
     }
   }
 
+  // A polygon "f i j k ...", split into the triangles (i, j, k), (i, k, l), ...
+  void face(const std::vector<std::string_view>& tokens, int line) {
+    if (tokens.size() < 4) fail(name_, line, "'f' needs at least three vertex indices ('f i j k')");
+    const int first = index(tokens[1], line);
+    int previous = index(tokens[2], line);
+    for (std::size_t i = 3; i < tokens.size(); ++i) {
+      const int v = index(tokens[i], line);
+      triangles_.push_back({first, previous, v});
+      triangle_lines_.push_back(line);
+      previous = v;
+    }
+  }
+
+  void check_defined(int v, int line) const {
+    const int n = static_cast<int>(out_.graph.vertices.size());
+    if (v >= n)
+      fail(name_, line,
+           "vertex index " + std::to_string(v + 1) + " is out of range: the file defines " +
+               std::to_string(n) + " vertices");
+  }
+
   // 0-based index of one "i", "i/t", "i//n" or "i/t/n" entry.
   int index(std::string_view token, int line) const {
     const std::string_view text = token.substr(0, token.find('/'));
@@ -193,7 +225,10 @@ class ObjParser {
   }
 
   const std::string& name_;
+  ObjContent content_;
   ObjLineGraph out_;
+  std::vector<std::array<int, 3>> triangles_;
+  std::vector<int> triangle_lines_;
 };
 
 // ---------------------------------------------------------------------------
@@ -322,11 +357,9 @@ void check_graph(const ObjLineGraph& g, const std::string& name) {
   check_connected(g, name);
 }
 
-}  // namespace
-
-ObjLineGraph parse_obj_text(std::string_view text, const std::string& name) {
+// Feeds every line of `text` to `parser`.
+void parse_lines(std::string_view text, ObjParser& parser) {
   if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // UTF-8 byte order mark
-  ObjParser parser(name);
   int line = 0;
   std::size_t begin = 0;
   while (begin < text.size()) {
@@ -336,9 +369,32 @@ ObjLineGraph parse_obj_text(std::string_view text, const std::string& name) {
     // A line ends with LF, CRLF or CR alone.
     begin = end + (text.substr(end, 2) == "\r\n" ? 2 : 1);
   }
+}
+
+}  // namespace
+
+ObjLineGraph parse_obj_text(std::string_view text, const std::string& name) {
+  ObjParser parser(name, ObjContent::Lines);
+  parse_lines(text, parser);
   ObjLineGraph g = parser.finish();
   check_graph(g, name);
   return g;
+}
+
+ObjSurface parse_obj_surface_text(std::string_view text, const std::string& name) {
+  ObjParser parser(name, ObjContent::Faces);
+  parse_lines(text, parser);
+  ObjSurface surface = parser.finish_surface();
+  if (surface.triangles.empty())
+    throw InputError(name + ": no faces: a surface needs at least one 'f' line");
+  return surface;
+}
+
+ObjSurface read_obj_surface(const std::string& path) {
+  const std::string shown = printable(path);
+  const std::string text =
+      read_input_file(path, kSurfaceFile, "cannot open surface file '" + shown + "'");
+  return parse_obj_surface_text(text, shown);
 }
 
 ObjLineGraph parse_obj_with_lines(std::istream& in, const std::string& name) {

@@ -24,6 +24,7 @@
 // 0-based index, the index every other input (configuration, outputs) uses.
 #pragma once
 
+#include <array>
 #include <istream>
 #include <string>
 #include <string_view>
@@ -52,5 +53,17 @@ ObjLineGraph read_obj_with_lines(const std::string& path);
 LineGraph parse_obj(std::istream& in, const std::string& name);
 ObjLineGraph parse_obj_with_lines(std::istream& in, const std::string& name);
 ObjLineGraph parse_obj_text(std::string_view text, const std::string& name);
+
+// A triangle mesh from an OBJ surface file ("v" and "f" lines; a polygon
+// "f i j k l ..." becomes the triangles i-j-k, i-k-l, ...; indices as for
+// linkages; 'l' lines are refused): the inverse design's target surface.
+// Throws InputError "FILE:LINE: what is wrong" for syntax errors and
+// indices out of range, and for a file without faces.
+struct ObjSurface {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> triangles;  // 0-based vertex indices
+};
+ObjSurface read_obj_surface(const std::string& path);
+ObjSurface parse_obj_surface_text(std::string_view text, const std::string& name);
 
 }  // namespace xshell
