@@ -365,4 +365,17 @@ Eigen::VectorXd ConstrainedNewtonSolver::tangent() {
   return t0 - constraint_.expand(s.reduced.solve(constraint_.restrict(Ht0)));
 }
 
+Eigen::VectorXd ConstrainedNewtonSolver::adjoint(const Eigen::VectorXd& f) {
+  Impl& s = *impl_;
+  const Eigen::VectorXd& a = constraint_.coefficients();
+  const Eigen::SparseMatrix<double>& H = objective_.hessian();
+  if (s.full.factorize(H) == FactorizationStatus::PositiveDefinite) {
+    const Eigen::VectorXd x1 = s.full.solve(f), x2 = s.full.solve(a);
+    return x1 - (a.dot(x1) / a.dot(x2)) * x2;
+  }
+  if (s.reduced.factorize(constraint_.reduce(H)) != FactorizationStatus::PositiveDefinite)
+    return {};
+  return constraint_.expand(s.reduced.solve(constraint_.restrict(f)));
+}
+
 }  // namespace xshell

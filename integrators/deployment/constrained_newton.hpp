@@ -82,6 +82,16 @@ class ConstrainedNewtonSolver {
   // Returns an empty vector when no factorization could be made.
   Eigen::VectorXd tangent();
 
+  // The adjoint of the equilibrium at the objective's current configuration
+  // (inverse design, docs/model.md section 9.7): lambda solving
+  //   [H a; a^T 0] [lambda; mu] = [f; 0]   (f: size n),
+  // by the Schur complement with one factorization of H (its symbolic
+  // analysis kept): x1 = H^-1 f, x2 = H^-1 a, lambda = x1 - (a.x1 / a.x2) x2;
+  // or, when H is not positive definite, on the constraint's null space,
+  // lambda = B (B^T H B)^-1 B^T f, unshifted (a shift would change the
+  // answer). Empty when neither factorizes (an unstable equilibrium).
+  Eigen::VectorXd adjoint(const Eigen::VectorXd& f);
+
   // Residual tolerance on |A - a . q| (units of the averaged unknowns).
   double constraint_tolerance = 1e-12;
   // Escapes from unstable equilibria per solve (0: report saddles as they

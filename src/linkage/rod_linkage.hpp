@@ -122,6 +122,13 @@ class RodLinkage {
   // up again. Throws ModelError for a wrong count, or a length that is not
   // positive and finite.
   void set_segment_rest_lengths(const std::vector<double>& lengths);
+  // Partial derivatives with respect to the segment rest lengths p (at fixed
+  // reduced unknowns; rest_length_derivatives.cpp, docs/model.md section
+  // 9.7): dE/dp of the elastic energy (num_segments()), and the mixed
+  // derivative d(grad E)/dp of gradient() (num_dofs() x num_segments(),
+  // column s nonzero only on segment s's local unknowns).
+  Eigen::VectorXd energy_rest_length_derivative() const;
+  Eigen::SparseMatrix<double> gradient_rest_length_derivative() const;
 
   // Reduced unknowns.
   int num_dofs() const { return num_dofs_; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "model_error.hpp"
 #include "segment_parallel.hpp"
 
 namespace xshell {
@@ -39,6 +40,15 @@ Eigen::VectorXd LinkageProblem::dofs_with_free(const Eigen::VectorXd& q) const {
 void LinkageProblem::set_free_dofs(const Eigen::VectorXd& q) {
   ++version_;
   linkage_.set_dofs(dofs_with_free(q));
+}
+
+void LinkageProblem::set_segment_rest_lengths(const std::vector<double>& lengths) {
+  if (rest_length_loads_)
+    throw ModelError(
+        "segment rest lengths: the problem has gravity or line loads, which are lumped on the rest "
+        "lengths; changing them under such loads is not supported");
+  ++version_;
+  linkage_.set_segment_rest_lengths(lengths);
 }
 
 double LinkageProblem::set_free_dofs_and_energy(const Eigen::VectorXd& q) {

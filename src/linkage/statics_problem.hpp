@@ -169,6 +169,14 @@ class LinkageProblem {
   // and point forces): negative when they push against it.
   double load_along(const Eigen::Vector3d& direction) const;
 
+  // Sets the segment rest lengths (RodLinkage::set_segment_rest_lengths)
+  // at the current configuration. Throws ModelError when the problem has
+  // dead loads that depend on the rest lengths (gravity, line loads, lumped
+  // on each node's share of rest length): they would keep their old values.
+  void set_segment_rest_lengths(const std::vector<double>& lengths);
+  // Gravity or a nonzero line load acts.
+  bool has_rest_length_loads() const { return rest_length_loads_; }
+
   double length_scale() const { return length_scale_; }
   double force_scale() const { return force_scale_; }
 
@@ -201,6 +209,7 @@ class LinkageProblem {
   Eigen::VectorXd point_forces_;                 // on reduced unknowns
   std::vector<char> has_segment_loads_;          // per segment: any nonzero load
   bool has_point_loads_ = false;
+  bool rest_length_loads_ = false;  // gravity or line loads (lumped on rest lengths)
   std::vector<Eigen::VectorXd> given_segment_forces_;  // the loads as given
   Eigen::VectorXd given_point_forces_;
   Eigen::VectorXd input_dofs_;  // joint positions at the input (the rest is unused)

@@ -322,6 +322,9 @@ void LinkageProblem::set_loads(const StaticsSetup& setup) {
   }
   for (const Eigen::VectorXd& f : segment_forces_) has_segment_loads_.push_back(!f.isZero(0.0));
   has_point_loads_ = !point_forces_.isZero(0.0);
+  rest_length_loads_ = !setup.gravity.isZero(0.0);
+  for (const LineLoad& load : setup.line_loads)
+    rest_length_loads_ = rest_length_loads_ || !load.force_per_length.isZero(0.0);
   given_segment_forces_ = segment_forces_;
   given_point_forces_ = point_forces_;
   // Point forces act on joint positions, which the input fixes: the

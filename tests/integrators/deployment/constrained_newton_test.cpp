@@ -122,6 +122,13 @@ TEST_CASE(
                                   2e-3;
     CHECK((t - exact).norm() < 1e-8 * exact.norm());
     CHECK(c.coefficients().dot(t) == doctest::Approx(1.0).epsilon(1e-12));
+    // The adjoint lambda: [K a; a^T 0] [lambda; mu] = [f; 0].
+    const Eigen::VectorXd rhs = random_vector(n, rng);
+    const Eigen::VectorXd lambda = solver.adjoint(rhs);
+    const Eigen::VectorXd dense = kkt(K, rhs, c.coefficients(), 0.0).first;
+    REQUIRE(lambda.size() == n);
+    CHECK((lambda - dense).norm() < 1e-10 * dense.norm());
+    CHECK(std::abs(c.coefficients().dot(lambda)) < 1e-12 * lambda.norm());
     ++cases;
   }
   CHECK(cases == 2);
