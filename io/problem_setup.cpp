@@ -68,9 +68,10 @@ void check_line_loads(const Config& config, const LineGraph& graph) {
 void check_rest_lengths(const Config& config, const LineGraph& graph) {
   const std::size_t given = config.rest_lengths.size(), segments = graph.edges.size();
   if (given == 0 || given == segments) return;
+  const std::string count = std::to_string(segments);
   throw InputError(config.source + ": rest_lengths: " + std::to_string(given) +
-                   " rest lengths given; the linkage has " + std::to_string(segments) +
-                   " segments, so it needs " + std::to_string(segments) +
+                   (given == 1 ? " rest length" : " rest lengths") + " given; the linkage has " +
+                   count + (segments == 1 ? " segment" : " segments") + ", so it needs " + count +
                    " (one per edge, in the order of the linkage file's 'l' lines: 'l a b c' "
                    "gives the edges a-b, b-c)");
 }
