@@ -60,6 +60,24 @@ TEST_CASE("rest_lengths: a free lath relaxes to its given rest length, and is cu
         doctest::Approx(1.0).epsilon(1e-14));
 }
 
+TEST_CASE("rest_lengths: the lath's weight follows its rest length") {
+  const fs::path dir = lath_folder("rest-lengths-weight");
+  std::string config =
+      lath_config(R"(, "rest_lengths": [1.02], "loads": {"gravity": [0, 0, -10]})");
+  config.replace(config.find("\"young_modulus\""), 0, "\"density\": 1000, ");
+  // The sagging lath converges to a gradient of 1.7e-11 (round-off).
+  config.replace(config.find("1e-12"), 5, "1e-10");
+  write_text(dir / "run.json", config);
+  const CommandResult r = run_xshell("relax run.json", dir);
+  CAPTURE(r.errors);
+  REQUIRE(r.status == 0);
+  const nlohmann::json s = read_json(dir / "out" / "summary.json");
+  double lifted = 0.0;
+  for (const nlohmann::json& reaction : s["reactions"])
+    lifted += reaction["force"][2].get<double>();
+  CHECK(lifted == doctest::Approx(1000 * 0.01 * 0.007 * 10 * 1.02).epsilon(1e-12));
+}
+
 TEST_CASE("rest_lengths: --init takes a state of the same rest lengths, refuses one of others") {
   const fs::path dir = lath_folder("rest-lengths-init");
   write_text(dir / "run.json", lath_config(R"(, "rest_lengths": [1.02])"));
