@@ -140,6 +140,16 @@ MaterialConfig read_material(const JsonField& f, const MaterialConfig* base) {
   return m;
 }
 
+// "rest_lengths": a non-empty array of positive lengths (their count is
+// checked against the linkage in make_problem_setup).
+std::vector<double> read_rest_lengths(const JsonField& f) {
+  std::vector<double> lengths;
+  for (const JsonField& item : f.elements()) lengths.push_back(positive(item));
+  if (lengths.empty())
+    f.fail("must list one rest length per segment (edge of the linkage file), got an empty array");
+  return lengths;
+}
+
 std::vector<RodMaterial> read_rods(const JsonField& f, const MaterialConfig& base) {
   std::vector<RodMaterial> rods;
   for (const JsonField& item : f.elements()) {
@@ -391,15 +401,16 @@ Config parse_config(const std::string& text, const std::string& name, const std:
   const JsonField root(document, "", shown);
   if (!document.is_object())
     root.fail("the configuration must be a JSON object { ... }, got " + root.describe());
-  root.check_keys({"linkage", "subdivisions", "rest_shape", "joints", "material", "rods",
-                   "supports", "loads", "solver", "output", "deployment", "transform", "units",
-                   "analysis"});
+  root.check_keys({"linkage", "subdivisions", "rest_shape", "rest_lengths", "joints", "material",
+                   "rods", "supports", "loads", "solver", "output", "deployment", "transform",
+                   "units", "analysis"});
   Config c;
   c.source = shown;
   c.linkage = file_path(root.require("linkage"), base_dir);
   if (auto transform = root.find("transform")) c.transform = read_transform(*transform);
   if (auto n = root.find("subdivisions")) c.subdivisions = at_least(*n, 3);
   if (auto rest = root.find("rest_shape")) c.rest_shape = rest->choice(kRestShapes);
+  if (auto lengths = root.find("rest_lengths")) c.rest_lengths = read_rest_lengths(*lengths);
   if (auto joints = root.find("joints")) c.joints = joints->choice(kJointModels);
   c.material = read_material(root.require("material"), nullptr);
   if (auto rods = root.find("rods")) c.rods = read_rods(*rods, c.material);
@@ -548,6 +559,7 @@ nlohmann::json to_json(const Config& c) {
         {"max_seconds", c.analysis.max_seconds ? nlohmann::json(*c.analysis.max_seconds)
                                                : nlohmann::json(nullptr)}}}};
   if (!c.transform.is_identity()) j["transform"] = transform_json(c.transform);
+  if (!c.rest_lengths.empty()) j["rest_lengths"] = c.rest_lengths;
   if (!c.units.length.empty()) j["units"]["length"] = c.units.length;
   if (!c.units.force.empty()) j["units"]["force"] = c.units.force;
   if (const auto& d = c.deployment) {

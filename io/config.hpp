@@ -262,7 +262,14 @@ struct Config {
                              // in that order (linkage/graph_transform.hpp); scale also converts
                              // the linkage's length unit
   int subdivisions = 8;      // "subdivisions", >= 3, default 8: rod edges per graph edge
-  RestShape rest_shape = RestShape::Input;   // "rest_shape", default "input"
+  RestShape rest_shape = RestShape::Input;  // "rest_shape", default "input"
+  std::vector<double> rest_lengths;  // "rest_lengths", default none (stored empty): [L_0, ...],
+                                     // each > 0; length (after any "transform"): one rest length
+                                     // per segment, in the linkage file's edge order ("l a b c"
+                                     // gives the edges a-b, b-c), measured joint to joint,
+                                     // overriding the drawing's; with either rest shape. The
+                                     // count is checked against the linkage by
+                                     // make_problem_setup (problem_setup.hpp)
   JointModel joints = JointModel::Rotation;  // "joints", default "rotation"
   MaterialConfig material;                   // "material", required
   std::vector<RodMaterial> rods;             // "rods", default none: per-rod materials

@@ -64,6 +64,17 @@ void check_line_loads(const Config& config, const LineGraph& graph) {
                          "rods_*.vtp)");
   }
 }
+// "rest_lengths": one per segment (edge of the linkage file).
+void check_rest_lengths(const Config& config, const LineGraph& graph) {
+  const std::size_t given = config.rest_lengths.size(), segments = graph.edges.size();
+  if (given == 0 || given == segments) return;
+  const std::string count = std::to_string(segments);
+  throw InputError(config.source + ": rest_lengths: " + std::to_string(given) +
+                   (given == 1 ? " rest length" : " rest lengths") + " given; the linkage has " +
+                   count + (segments == 1 ? " segment" : " segments") + ", so it needs " + count +
+                   " (one per edge, in the order of the linkage file's 'l' lines: 'l a b c' "
+                   "gives the edges a-b, b-c)");
+}
 }  // namespace
 
 Material model_material(const MaterialConfig& m) {
@@ -126,6 +137,7 @@ ProblemSetup make_problem_setup(const Config& config, const LineGraph& input) {
   check_vertices(config, graph);
   const std::vector<std::vector<int>> support_vertices = resolve_supports(config, graph);
   check_support_kinds(config, graph, support_vertices);
+  check_rest_lengths(config, graph);
   // A linkage far beyond any machine's memory is refused here, with the key
   // to change, rather than failing in an allocation (or the kernel's OOM killer).
   const double rod_edges = static_cast<double>(graph.edges.size()) * config.subdivisions;
@@ -147,6 +159,7 @@ ProblemSetup make_problem_setup(const Config& config, const LineGraph& input) {
 
   setup.options.subdivisions = config.subdivisions;
   setup.options.rest_shape = config.rest_shape;
+  setup.options.segment_rest_lengths = config.rest_lengths;
   setup.options.joint_kind =
       config.joints == JointModel::EdgeVectors ? JointKind::EdgeVectors : JointKind::Rotation;
   setup.options.material = model_material(config.material);

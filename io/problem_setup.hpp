@@ -20,7 +20,8 @@ struct ProblemSetup {
 
 // The graph is first transformed by config.transform, then the supports'
 // selections resolved in it (resolve_supports). Throws InputError for vertex
-// and rod indices out of range, for selections that select nothing, for a support that
+// and rod indices out of range, for "rest_lengths" of another count than the
+// graph's edges, for selections that select nothing, for a support that
 // cannot apply (an opening angle held at a free rod end or at edge-vector
 // joints), for more than kMaxRodEdges rod edges and for "rods" entries that
 // do not apply (see segment_materials); ModelError when the graph is no

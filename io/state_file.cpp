@@ -45,7 +45,45 @@ json fingerprint(const RodLinkage& linkage) {
               {"rest_shape", rest_name(linkage.options().rest_shape)},
               {"graph_hash", graph_hash(linkage.graph())}};
   if (!linkage.options().clamped_ends.empty()) out["clamped_ends"] = linkage.options().clamped_ends;
+  if (!linkage.options().segment_rest_lengths.empty())
+    out["rest_lengths"] = linkage.options().segment_rest_lengths;
   return out;
+}
+
+// A fingerprint without its rest lengths (a copy).
+json without_rest_lengths(json fingerprint) {
+  if (fingerprint.is_object()) fingerprint.erase("rest_lengths");
+  return fingerprint;
+}
+
+// How the rest lengths of two fingerprints that agree otherwise differ.
+std::string rest_lengths_difference(const json& saved, const json& expected) {
+  const auto lengths = [](const json& f) {
+    const auto it = f.find("rest_lengths");
+    return it == f.end() ? json::array() : *it;
+  };
+  const json a = lengths(saved), b = lengths(expected);
+  std::string what;
+  const auto number = [](const json& l) { return l.is_number(); };
+  // Written only when given, and then as a non-empty array of numbers.
+  if (saved.contains("rest_lengths") &&
+      (!a.is_array() || a.empty() || !std::all_of(a.begin(), a.end(), number)))
+    what = "the state's fingerprint has malformed \"rest_lengths\"";
+  else if (a.empty())
+    what = "the state was saved with the drawing's rest lengths, this run gives \"rest_lengths\"";
+  else if (b.empty())
+    what = "the state was saved with \"rest_lengths\", this run has the drawing's rest lengths";
+  else if (a.size() != b.size())
+    what = "the state was saved with " + std::to_string(a.size()) +
+           " \"rest_lengths\", this run "
+           "gives " +
+           std::to_string(b.size());
+  else
+    for (std::size_t s = 0; s < a.size() && what.empty(); ++s)
+      if (a[s] != b[s])
+        what = "the state was saved with other \"rest_lengths\" (segment " + std::to_string(s) +
+               ": " + printable(a[s].dump()) + " in the state, " + b[s].dump() + " in this run)";
+  return what + "; give the rest lengths it was saved with, or start without --init";
 }
 }  // namespace
 
@@ -320,10 +358,16 @@ void restore_state(const std::string& text, const std::string& name, RodLinkage&
     throw InputError(name + ": not an xshell state file");
   try {
     const json expected = fingerprint(linkage);
-    if (doc.at("fingerprint") != expected)
+    const json& saved = doc.at("fingerprint");
+    if (saved != expected) {
+      const json saved_graph = without_rest_lengths(saved);
+      const json expected_graph = without_rest_lengths(expected);
+      if (saved_graph == expected_graph)
+        throw InputError(name + ": " + rest_lengths_difference(saved, expected));
       throw InputError(name + ": the state belongs to another linkage (its fingerprint " +
-                       printable(doc.at("fingerprint").dump()) + " differs from this run's " +
-                       expected.dump() + ")");
+                       printable(saved_graph.dump()) + " differs from this run's " +
+                       expected_graph.dump() + ")");
+    }
     const double size = diagonal(linkage.graph().vertices);
     const StateReader r(name, size);
     // The same graph has the same bounding-box centre: the saved origin is

@@ -2,14 +2,18 @@
 // nodes, thetas, source frames and twist hints, every joint's parameters and
 // reference frame, in the model's recentred coordinates with the origin that
 // recentred them, and a fingerprint of the linkage (graph, subdivisions, rest
-// shape, clamped free ends) so that a state from another linkage is refused.
+// shape, clamped free ends, rest lengths given) so that a state from another
+// linkage is refused.
 //
 // Layout:
 // {
 //   "format": "xshell-state", "version": 1,
 //   "fingerprint": {"vertices": V, "edges": E, "subdivisions": n, "rest_shape": "input",
-//                   "graph_hash": "16 hex digits", "clamped_ends": [v, ...]},
-//   ("clamped_ends": the clamped free-end vertices, absent when there are none)
+//                   "graph_hash": "16 hex digits", "clamped_ends": [v, ...],
+//                   "rest_lengths": [L, ...]},
+//   ("clamped_ends": the clamped free-end vertices, absent when there are none;
+//    "rest_lengths": the segments' rest lengths of the configuration's "rest_lengths",
+//    absent when it gives none, so older states of such runs still match)
 //   "origin": [x, y, z],
 //   "segments": [{"nodes": [[x, y, z], ...], "thetas": [...],
 //                 "source_frames": [{"tangent": [...], "d1": [...]}, ...], "twist_hints": [...]},

@@ -113,6 +113,29 @@ def test_state_restarts_a_run(sample_config, tmp_path):
     np.testing.assert_allclose(from_file.vertices, first.vertices, rtol=0, atol=1e-9)
 
 
+def test_rest_lengths_pass_through_a_dict(tmp_path):
+    """"rest_lengths" of a dict: a free lath drawn 1 long relaxes to 1.02;
+    a count other than the segments' is the command line's error."""
+    (tmp_path / "lath.obj").write_text("v 0 0 0\nv 1 0 0\nl 1 2\n")
+    cfg = {
+        "linkage": str(tmp_path / "lath.obj"),
+        "subdivisions": 5,
+        "rest_shape": "straight",
+        "rest_lengths": [1.02],
+        "material": {"young_modulus": 2e4, "cross_section": {"width": 0.01, "height": 0.007}},
+        "supports": [{"vertex": 0, "fix": ["position"]}, {"vertex": 1, "fix": ["y", "z"]}],
+        "solver": {"gradient_tolerance": 1e-12},
+    }
+    res = xshell.relax(cfg)
+    assert res.converged
+    assert abs(res.vertices[1, 0] - 1.02) <= 1e-9
+    assert res.summary["configuration"]["rest_lengths"] == [1.02]
+    with pytest.raises(ValueError, match="rest_lengths: 2 rest lengths given; the linkage has 1 "):
+        xshell.relax(dict(cfg, rest_lengths=[1.0, 1.0]))
+    with pytest.raises(ValueError, match="not a JSON configuration"):
+        xshell.relax(dict(cfg, rest_lengths=[float("nan")]))
+
+
 def test_progress_receives_one_dict_per_iteration(sample_config):
     records = []
     res = xshell.relax(sample_config, progress=records.append)
