@@ -11,8 +11,9 @@
 #   AUTO (default)  libvtk9-dev when found, else ParaView's VTK.
 #   OFF             libvtk9-dev only.
 #   ON              ParaView's VTK only (also when libvtk9-dev is installed).
-# ParaView's VTK is looked for under CMAKE_PREFIX_PATH and the system prefixes
-# (/usr, /usr/local); VTK_DIR set by hand wins over both.
+# ParaView's VTK is looked for under CMAKE_PREFIX_PATH (the variable, then the
+# environment's) and the system prefixes (/usr, /usr/local); VTK_DIR set by
+# hand wins over them.
 #
 # Sets VTK_LIBRARIES (the components below) and XSHELL_VTK_SOURCE
 # ("libvtk9-dev" or "ParaView").
@@ -25,7 +26,8 @@ set(_xshell_vtk_components CommonCore CommonDataModel IOXML FiltersCore IOImage 
 # The directories holding ParaView's vtk-config.cmake, newest version first.
 function(_xshell_paraview_vtk_dirs out)
   set(dirs)
-  foreach(prefix IN LISTS CMAKE_PREFIX_PATH CMAKE_SYSTEM_PREFIX_PATH)
+  string(REPLACE ":" ";" env_prefixes "$ENV{CMAKE_PREFIX_PATH}")
+  foreach(prefix IN LISTS CMAKE_PREFIX_PATH env_prefixes CMAKE_SYSTEM_PREFIX_PATH)
     file(GLOB found "${prefix}/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/paraview-*/vtk/vtk-config.cmake"
       "${prefix}/lib/cmake/paraview-*/vtk/vtk-config.cmake")
     list(SORT found COMPARE NATURAL ORDER DESCENDING)
