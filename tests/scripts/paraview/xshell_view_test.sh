@@ -17,27 +17,15 @@ if [ -z "$pvpython" ] || [ ! -x "$pvpython" ]; then
   echo "skipped: no pvpython or pvbatch (set XSHELL_PVPYTHON or put one in PATH)"
   exit 77
 fi
-display=()
-if [ -z "${DISPLAY:-}" ]; then
-  command -v xvfb-run >/dev/null || { echo "skipped: no display and no xvfb-run"; exit 77; }
-  display=(xvfb-run -a)
-fi
 fail() { echo "FAILED: $*"; exit 1; }
 
-# Debian's ParaView 5.11 aborts now and then (about one run in four on the
-# machine where this was written, under Xvfb and a plain Xvfb alike) when
-# XOpenDisplay fails in vtkOpenGLRenderWindow::SupportsOpenGL ("bad X server
-# connection"), before it reads anything. Such a run is repeated, up to 4
-# times; every other failure counts.
+# The script, by run-pvpython.sh (a display, and the repeat of a run that
+# could not open it); its output in $WORK/view.log.
 view() {
-  local attempt status
-  for attempt in 1 2 3 4; do
-    "${display[@]}" "$pvpython" "$script" "$@" > "$WORK/view.log" 2>&1
-    status=$?
-    grep -q "bad X server connection" "$WORK/view.log" || break
-    echo "ParaView could not open the display (attempt $attempt), again"
-  done
-  grep -v "^\s*$" "$WORK/view.log" | tail -n 5
+  bash "$here/../../../scripts/paraview/run-pvpython.sh" "$pvpython" "$script" "$@" > "$WORK/view.log" 2>&1
+  local status=$?
+  tail -n 5 "$WORK/view.log"
+  [ "$status" -ne 77 ] || { echo "skipped: no display and no xvfb-run"; exit 77; }
   return $status
 }
 
