@@ -5,11 +5,11 @@
 # xvfb-run.
 #
 # Debian's ParaView 5.11 aborts now and then (about one run in four on the
-# machine where this was written, under xvfb-run and a long-running Xvfb
-# alike) when XOpenDisplay fails in vtkOpenGLRenderWindow::SupportsOpenGL
-# ("bad X server connection"), as the first view is made, before anything is
-# drawn or written. Such a run is repeated, up to 4 times; any other failure
-# is the script's status.
+# machine where this was written, more when it is loaded, under xvfb-run and
+# a long-running Xvfb alike) when XOpenDisplay fails in
+# vtkOpenGLRenderWindow::SupportsOpenGL ("bad X server connection"), as the
+# first view is made, before anything is drawn or written. Such a run is
+# repeated, up to 6 times; any other failure is the script's status.
 set -uo pipefail
 pvpython="$1"
 shift
@@ -20,7 +20,7 @@ if [ -z "${DISPLAY:-}" ]; then
 fi
 log="$(mktemp)"
 trap 'rm -f "$log"' EXIT
-for attempt in 1 2 3 4; do
+for attempt in 1 2 3 4 5 6; do
   "${display[@]}" "$pvpython" "$@" > "$log" 2>&1
   status=$?
   grep -q "bad X server connection" "$log" || break
