@@ -21,11 +21,17 @@ steps, Newton iterations and factorizations (all of the run's, failed
 attempts included), wall seconds (the process, from its start to its exit),
 the run's own phase times (summary.json "timings", when it has them), peak
 memory (MB, the process's maximum resident set), the end energy and how
-many steps ended unstable.
+many steps ended unstable. With --gravity G (length/s^2, downwards along
+-z) the laths weigh (--density, default 7e-10: timber in tonnes per mm^3,
+so G = 9810 for millimetres and seconds) and the run ends with the
+stability analysis of a loaded state (its eigenmodes and buckling load
+factor): the table adds the analysis' share of the run's wall time, its
+stages' seconds (from the run's --progress json) and its statuses.
 
   /usr/bin/python3 bench/deployments.py [--xshell build/app/xshell]
       [--data ../shared/data/elasticrods] [--designs manta_ray,...]
       [--reps 3] [--subdivisions 8] [--steps 20] [--csv FILE] [--keep DIR]
+      [--gravity 9810] [--density 7e-10]
 
 Needs the data folder; says so and exits 0 when it is absent (skipped).
 """
@@ -54,10 +60,15 @@ DESIGNS = {
 
 COLUMNS = ["design", "steps", "iterations", "factorizations", "iterations_per_step",
            "factorizations_per_step", "wall_s", "load_s", "setup_s", "solve_s", "analysis_s",
-           "output_s", "peak_mb", "energy", "unstable_steps", "status", "reps"]
+           "output_s", "analysis_share", "eigen_modes_s", "unloaded_equilibrium_s",
+           "buckling_s", "eigenvalues", "buckling", "load_factor", "peak_mb", "energy",
+           "unstable_steps", "status", "reps"]
+
+# The analysis' stages, in their order (README, "Progress").
+STAGES = ["eigen_modes", "unloaded_equilibrium", "buckling"]
 
 
-def config(obj, subdivisions, deployment=None):
+def config(obj, subdivisions, deployment=None, gravity=None, density=7e-10):
     c = {
         "linkage": obj,
         "subdivisions": subdivisions,
@@ -68,6 +79,9 @@ def config(obj, subdivisions, deployment=None):
     }
     if deployment is not None:
         c["deployment"] = deployment
+    if gravity:
+        c["material"]["density"] = density
+        c["loads"] = {"gravity": [0.0, 0.0, -gravity]}
     return c
 
 
@@ -89,7 +103,7 @@ def average_angle(summary):
     return sum(angles) / len(angles)
 
 
-def prepare(xshell, data, name, subdivisions, steps, root):
+def prepare(xshell, data, name, subdivisions, steps, root, gravity=None, density=7e-10):
     """The case's folder and configuration (relaxing the flat state first
     for a relative target)."""
     obj, (kind, value) = DESIGNS[name]
@@ -110,14 +124,14 @@ def prepare(xshell, data, name, subdivisions, steps, root):
         args += ["--init", os.path.join("flat", "state.json")]
     deployment = {"average_opening_angle": target, "steps": steps}
     with open(os.path.join(folder, "deploy.json"), "w") as f:
-        json.dump(config(path, subdivisions, deployment), f)
-    return folder, args + ["--quiet"]
+        json.dump(config(path, subdivisions, deployment, gravity, density), f)
+    return folder, args + ["--progress", "json"]
 
 
 def measure(xshell, folder, args):
     """One run: its row (before the medians)."""
     code, wall, peak, errors = run_xshell(xshell, folder, args)
-    row = {"wall_s": wall, "peak_mb": peak, "status": f"exit {code}"}
+    row = {"wall_s": wall, "peak_mb": peak, "status": f"exit {code}"} | stage_seconds(errors)
     summary_path = os.path.join(folder, "out", "summary.json")
     if not os.path.exists(summary_path):
         print(errors[-400:], file=sys.stderr)
@@ -131,6 +145,12 @@ def measure(xshell, folder, args):
     row["energy"] = s["energy"]["total"]
     for phase, seconds in (s.get("timings") or {}).items():
         row[f"{phase}_s"] = seconds
+    if "analysis_s" in row:
+        row["analysis_share"] = row["analysis_s"] / wall
+    analysis = s.get("stability_analysis") or {}
+    row["eigenvalues"] = analysis.get("eigenvalues")
+    row["buckling"] = analysis.get("buckling")
+    row["load_factor"] = s.get("buckling_load_factor")
     with open(os.path.join(folder, "out", "deployment.csv")) as f:
         table = list(csv.DictReader(f))
     row["unstable_steps"] = sum(1 for t in table if t["stable"] != "true")
@@ -143,8 +163,29 @@ def measure(xshell, folder, args):
     return row
 
 
+def stage_seconds(progress):
+    """Seconds of each analysis stage, from the JSON progress lines: a stage
+    lasts until the next phase or stage starts."""
+    events = []
+    for text in progress.splitlines():
+        if text.startswith("{"):
+            try:
+                events.append(json.loads(text))
+            except ValueError:
+                pass
+    starts = [(e.get("phase"), e.get("stage"), e["elapsed"]) for e in events
+              if e.get("event") in ("phase", "done") and "elapsed" in e]
+    out = {}
+    for (phase, stage, t), (_, _, end) in zip(starts, starts[1:]):
+        if phase == "analysis" and stage in STAGES:
+            out[f"{stage}_s"] = out.get(f"{stage}_s", 0.0) + end - t
+    return out
+
+
 def medians(rows):
     out = {"reps": len(rows), "status": ",".join(sorted({r["status"] for r in rows}))}
+    for key in ("eigenvalues", "buckling"):
+        out[key] = ",".join(sorted({str(r.get(key)) for r in rows}))
     for key in COLUMNS:
         values = [r[key] for r in rows if isinstance(r.get(key), (int, float))]
         if values:
@@ -163,6 +204,8 @@ def main():
     parser.add_argument("--steps", type=int, default=20)
     parser.add_argument("--csv")
     parser.add_argument("--keep", help="run in this folder and keep it (default: a temporary one)")
+    parser.add_argument("--gravity", type=float, help="downwards acceleration (length/s^2)")
+    parser.add_argument("--density", type=float, default=7e-10, help="with --gravity")
     a = parser.parse_args()
     if not os.path.isdir(a.data):
         print(f"deployments: skipped: no data folder {a.data}")
@@ -174,7 +217,8 @@ def main():
     xshell = os.path.abspath(a.xshell)
     root = a.keep or tempfile.mkdtemp(prefix="xshell-deployments-")
     os.makedirs(root, exist_ok=True)
-    cases = {n: prepare(xshell, a.data, n, a.subdivisions, a.steps, root) for n in names}
+    cases = {n: prepare(xshell, a.data, n, a.subdivisions, a.steps, root, a.gravity, a.density)
+             for n in names}
     runs = {n: [] for n in names}
     for rep in range(a.reps):
         for n in names:
@@ -186,6 +230,10 @@ def main():
     show = ["design", "steps", "iterations", "factorizations", "iterations_per_step",
             "factorizations_per_step", "wall_s", "solve_s", "analysis_s", "output_s", "peak_mb",
             "energy", "unstable_steps", "status"]
+    if a.gravity:
+        show[show.index("output_s") + 1:show.index("output_s") + 1] = [
+            "analysis_share", "eigen_modes_s", "unloaded_equilibrium_s", "buckling_s",
+            "eigenvalues", "buckling", "load_factor"]
     print(" | ".join(show))
     for row in table:
         cells = []
