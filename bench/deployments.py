@@ -8,9 +8,12 @@ the engineering results, the summary), in its own process:
   manta_ray    from flat to an average opening angle of 93 degrees
   darth_vader  from flat to 115 degrees (the published deployments)
   scary_face, hourglass, large
-               by 0.5 rad from their relaxed flat states, opening (the
-               average angle raised); the relaxation runs once per design,
-               untimed, and the deployment starts from its state.json
+               by 0.5 rad from their relaxed flat states, opening: away
+               from the nearer collapsed state (the average angle raised
+               when it is below pi/2, lowered otherwise: hourglass lies
+               flat at 3.01 rad, near pi); the relaxation runs once per
+               design, untimed, and the deployment starts from its
+               state.json
 
 Straight laths, millimetres, E = 20000 MPa, rectangle 10 x 7 mm (the
 designs' own sections are listed in ../shared/data/elasticrods/README.txt;
@@ -53,9 +56,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 DESIGNS = {
     "manta_ray": ("manta_ray_5ca2f7ab.obj", ("degrees", 93.0)),
     "darth_vader": ("darth_vader_fig5_1693d9a2.obj", ("degrees", 115.0)),
-    "scary_face": ("scary_face_8f39dd30.obj", ("raise", 0.5)),
-    "hourglass": ("hourglass_912c32dc.obj", ("raise", 0.5)),
-    "large": ("large_6d35a972.obj", ("raise", 0.5)),
+    "scary_face": ("scary_face_8f39dd30.obj", ("open", 0.5)),
+    "hourglass": ("hourglass_912c32dc.obj", ("open", 0.5)),
+    "large": ("large_6d35a972.obj", ("open", 0.5)),
 }
 
 COLUMNS = ["design", "steps", "iterations", "factorizations", "iterations_per_step",
@@ -120,7 +123,9 @@ def prepare(xshell, data, name, subdivisions, steps, root, gravity=None, density
         if code != 0:
             raise RuntimeError(f"{name}: the relaxation failed ({code}): {errors[-400:]}")
         with open(os.path.join(folder, "flat", "summary.json")) as f:
-            target = average_angle(json.load(f)) + value
+            flat = average_angle(json.load(f))
+        # Opening leaves the collapsed state nearer to the flat angle (0 or pi).
+        target = flat + value if flat < math.pi / 2 else flat - value
         args += ["--init", os.path.join("flat", "state.json")]
     deployment = {"average_opening_angle": target, "steps": steps}
     with open(os.path.join(folder, "deploy.json"), "w") as f:
