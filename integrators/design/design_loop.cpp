@@ -10,7 +10,6 @@ namespace xshell {
 namespace {
 
 struct Evaluated {
-  Eigen::VectorXd p;
   double value = 0.0;
   DesignTerms terms;
 };
@@ -51,7 +50,7 @@ DesignLoopResult optimize_design(DesignObjective& objective, const DesignLoopOpt
     }
     f = e.value;
     gradient = e.gradient;
-    recent.push_back({p, e.value, e.terms});
+    recent.push_back({e.value, e.terms});
     if (recent.size() > 32) recent.pop_front();
     return true;
   };
