@@ -53,7 +53,22 @@ struct Subcommands {
   CLI::App* relax = nullptr;
   CLI::App* render = nullptr;
   CLI::App* fabricate = nullptr;
+  CLI::App* design = nullptr;
 };
+
+CLI::App* add_design(CLI::App& app, DesignArguments& design) {
+  CLI::App* c = app.add_subcommand(
+      "design", "Find rest lengths whose deployed shell fits a target (the \"design\" section)");
+  c->add_option("config", design.config, "Configuration (JSON) with a \"design\" section")
+      ->required()
+      ->check(kNonEmptyPath);
+  c->add_option("--out", design.out, "Output directory (overrides output.directory)")
+      ->check(kNonEmptyPath);
+  c->add_option("--init", design.init, "Start from a state.json of the flat linkage")
+      ->check(kNonEmptyPath);
+  c->add_flag("--quiet", design.quiet, "No progress lines");
+  return c;
+}
 
 Subcommands add_subcommands(CLI::App& app, CommandLine& line) {
   Subcommands s;
@@ -121,6 +136,7 @@ Subcommands add_subcommands(CLI::App& app, CommandLine& line) {
       ->check(kNonEmptyPath);
   s.fabricate->add_option("--out", fabricate.out, "Output directory (overrides output.directory)")
       ->check(kNonEmptyPath);
+  s.design = add_design(app, line.design);
   return s;
 }
 
@@ -128,11 +144,11 @@ Subcommands add_subcommands(CLI::App& app, CommandLine& line) {
 
 CommandLine parse_command_line(int argc, const char* const* argv) {
   // The command first: CLI11 would only say that one is required.
-  const std::string commands = "the commands are relax, render and fabricate";
+  const std::string commands = "the commands are relax, render, fabricate and design";
   if (argc < 2) return usage_error("no command given; " + commands, "");
   const std::string first = argv[1];
-  if (first.empty() ||
-      (first[0] != '-' && first != "relax" && first != "render" && first != "fabricate"))
+  if (first.empty() || (first[0] != '-' && first != "relax" && first != "render" &&
+                        first != "fabricate" && first != "design"))
     return usage_error("unknown command '" + first + "'; " + commands, "");
   if (first[0] == '-' && first != "-h" && first != "--help" && first != "--version")
     return usage_error("unknown option '" + first + "' before the command; " + commands, "");
@@ -155,10 +171,14 @@ CommandLine parse_command_line(int argc, const char* const* argv) {
     const std::string command = s.relax->parsed()       ? "relax"
                                 : s.render->parsed()    ? "render"
                                 : s.fabricate->parsed() ? "fabricate"
+                                : s.design->parsed()    ? "design"
                                                         : "";
     return usage_error(e.what(), command);
   }
-  line.command = *s.relax ? Command::Relax : *s.fabricate ? Command::Fabricate : Command::Render;
+  line.command = *s.relax       ? Command::Relax
+                 : *s.fabricate ? Command::Fabricate
+                 : *s.design    ? Command::Design
+                                : Command::Render;
   return line;
 }
 

@@ -5,13 +5,14 @@
 
 #include <string>
 
+#include "design_command.hpp"
 #include "fabricate_command.hpp"
 #include "relax_command.hpp"
 #include "render_command.hpp"
 
 namespace xshell {
 
-enum class Command { None, Relax, Render, Fabricate };
+enum class Command { None, Relax, Render, Fabricate, Design };
 
 struct CommandLine {
   // The command to run with its arguments below; None: nothing to run, the
@@ -22,6 +23,7 @@ struct CommandLine {
   RelaxArguments relax;
   RenderArguments render;
   FabricateArguments fabricate;
+  DesignArguments design;
   int exit_status = 0;
   std::string output;
   std::string error;

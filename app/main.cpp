@@ -38,6 +38,12 @@ int main(int argc, char** argv) {
         return run_fabricate(line.fabricate);
       case Command::Render:
         return run_render(line.render);
+      case Command::Design:
+        // Stops at the next design iteration and writes the best design so far.
+        std::signal(SIGINT, on_signal);
+        std::signal(SIGTERM, on_signal);
+        std::signal(SIGPIPE, SIG_IGN);
+        return run_design_command(line.design, g_stop);
     }
   } catch (const std::bad_alloc&) {
     std::cerr

@@ -21,11 +21,12 @@ namespace {
 
 constexpr const char* kLockName = ".xshell-lock";
 
-// Every fixed name a run (relax or fabricate) writes into its folder.
-constexpr std::array<const char*, 12> kFixedNames = {
-    "series.pvd",      "state.json",       "summary.json",   "reactions.vtp",
-    "stresses.vtp",    "joint_forces.vtp", "modes.vtp",      "fabrication.json",
-    "fabrication.csv", "fabrication.svg",  "deployment.csv", "deployment.png"};
+// Every fixed name a run (relax, fabricate or design) writes into its folder.
+constexpr std::array<const char*, 16> kFixedNames = {
+    "series.pvd",      "state.json",          "summary.json",    "reactions.vtp",
+    "stresses.vtp",    "joint_forces.vtp",    "modes.vtp",       "fabrication.json",
+    "fabrication.csv", "fabrication.svg",     "deployment.csv",  "deployment.png",
+    "design.json",     "deployed_state.json", "flat_state.json", "flat_layout.obj"};
 
 // rods_NNNNNN.vtp, frames_..., joints_..., solids_...: a series' step file
 // (six digits or more).

@@ -252,6 +252,42 @@ struct Deployment {
   int steps = 20;                        // "steps", >= 1, default 20
 };
 
+// "design.weights": the objective's terms, each >= 0, at least one > 0.
+// Every term is made unit-free before it is weighted (integrators/design/
+// design_scales.hpp): the fit by (targets x bounding-box diagonal d^2 / 2),
+// the energies by the energy of bending every lath to a radius d, and the
+// regularization is the mean squared relative change of the rest lengths.
+struct DesignWeightsConfig {
+  double fit = 1.0;              // "fit", default 1
+  double deployed_energy = 0.0;  // "deployed_energy", default 0
+  double flat_energy = 0.0;      // "flat_energy", default 0
+  double regularization = 0.0;   // "regularization", default 0
+};
+
+// "design", read by `xshell design` (the inverse design, docs/model.md
+// section 9.7; README, "Design"): the deployed shape the rest lengths are
+// fitted to, how the objective's terms are weighted, and how far the
+// optimizer may go. `xshell relax` ignores it. Exactly one
+// of "target_joints" and "target_surface".
+struct DesignConfig {
+  double average_opening_angle = 0;  // "average_opening_angle", in (0, pi), required; radians
+  std::string target_joints;    // "target_joints": {"positions": [[x, y, z] or null, ...]}, per
+                                // OBJ vertex (io/target_joints_file.hpp), in the linkage file's
+                                // coordinates (before "transform"); stored resolved
+  std::string target_surface;   // "target_surface": a triangle mesh OBJ (f lines) whose closest
+                                // points attract every joint, in the linkage file's
+                                // coordinates; stored resolved
+  DesignWeightsConfig weights;  // "weights"
+  double bounds = 0.2;          // "bounds", in (0, 1), default 0.2: the largest relative change
+                                // of each rest length
+  int max_iterations = 100;     // "max_iterations", >= 1, default 100: design iterations
+  int steps = 10;               // "steps", >= 1, default 10: deployment steps from the flat
+                                // state to the deployed angle (once, at the start)
+  Toggle flat_planar = Toggle::Auto;  // "flat_planar", default "auto" (true when every vertex
+                                      // of the input has the same z): the flat state is solved
+                                      // with every joint held in that plane (z)
+};
+
 struct Config {
   std::string source;        // the configuration's file name (for messages; not a key)
   std::string linkage;       // "linkage", required: the OBJ line mesh, relative to the
@@ -279,6 +315,7 @@ struct Config {
   OutputOptions output;                      // "output"
   AnalysisOptions analysis;                  // "analysis"
   std::optional<Deployment> deployment;      // "deployment", optional
+  std::optional<DesignConfig> design;        // "design", optional (xshell design)
   UnitNames units;  // "units", default none: {"length": "mm", "force": "N"}, each optional, 1 to
                     // 16 characters without spaces, "/", "^", "[" or "]": the names of the
                     // system the numbers are in, for labels only (colour bars of `xshell

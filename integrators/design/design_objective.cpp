@@ -63,15 +63,19 @@ const char* to_string(DesignStatus status) {
   return "unknown";
 }
 
-DesignObjective::DesignObjective(const LinkageProblem& flat, DesignOptions options)
-    : options_(std::move(options)), start_lengths_(flat.linkage().segment_rest_lengths()) {
+DesignObjective::DesignObjective(const LinkageProblem& flat, DesignOptions options,
+                                 const LinkageProblem* flat_held)
+    : options_(std::move(options)),
+      start_lengths_(flat.linkage().segment_rest_lengths()),
+      targets_(options_.targets) {
   if (flat.has_rest_length_loads())
     throw ModelError(
         "design: gravity and line loads are lumped on the rest lengths, and their derivative is "
         "not modelled; inverse design needs a problem without them");
-  for (const VertexTarget& t : options_.targets) vertex_position_terms(flat.linkage(), t.vertex);
+  for (const VertexTarget& t : targets_) vertex_position_terms(flat.linkage(), t.vertex);
   if (options_.weights.flat_energy != 0.0)
-    flat_ = held_at(flat, average_opening_angle(flat.linkage()), options_.newton, "flat");
+    flat_ = held_at(flat_held ? *flat_held : flat, average_opening_angle(flat.linkage()),
+                    options_.newton, "flat");
   LinkageProblem deployed = flat;
   DeploymentPlan plan;
   plan.average_angle = options_.deployed_angle;
@@ -98,15 +102,15 @@ bool DesignObjective::solve(const std::vector<double>& lengths, std::string& rea
   return true;
 }
 
-void DesignObjective::evaluate_terms(const std::vector<double>& lengths,
-                                     DesignEvaluation& out) const {
+void DesignObjective::evaluate_terms(const std::vector<double>& lengths, DesignEvaluation& out) {
   const DesignWeights& w = options_.weights;
   DesignTerms& t = out.terms;
-  t.fit = target_fit(deployed().linkage(), options_.targets);
+  if (options_.retarget) options_.retarget(deployed().linkage(), targets_);
+  t.fit = target_fit(deployed().linkage(), targets_);
   t.deployed_energy = deployed().energy().total();
   t.flat_energy = flat_ ? flat_->problem().energy().total() : 0.0;
   for (std::size_t s = 0; s < lengths.size(); ++s)
-    t.regularization += 0.5 * std::pow(lengths[s] - start_lengths_[s], 2);
+    t.regularization += 0.5 * std::pow(lengths[s] / start_lengths_[s] - 1.0, 2);
   out.value = w.fit * t.fit + w.deployed_energy * t.deployed_energy +
               w.flat_energy * t.flat_energy + w.regularization * t.regularization;
 }
@@ -117,10 +121,9 @@ bool DesignObjective::gradient(const std::vector<double>& lengths, Eigen::Vector
   out = w.deployed_energy * linkage.energy_rest_length_derivative();
   if (flat_) out += w.flat_energy * flat_->problem().linkage().energy_rest_length_derivative();
   for (std::size_t s = 0; s < lengths.size(); ++s)
-    out[s] += w.regularization * (lengths[s] - start_lengths_[s]);
-  if (w.fit == 0.0 || options_.targets.empty()) return true;
-  const Eigen::VectorXd f =
-      w.fit * free_part(deployed(), target_fit_gradient(linkage, options_.targets));
+    out[s] += w.regularization * (lengths[s] / start_lengths_[s] - 1.0) / start_lengths_[s];
+  if (w.fit == 0.0 || targets_.empty()) return true;
+  const Eigen::VectorXd f = w.fit * free_part(deployed(), target_fit_gradient(linkage, targets_));
   const Eigen::VectorXd lambda = deployed_->adjoint(f);
   if (lambda.size() == 0) return false;
   out -=

@@ -1,11 +1,14 @@
 // Inverse design of a linkage by its segment rest lengths p (one per
 // segment, RodLinkage::segment_rest_lengths, docs/model.md section 9.7):
-//   J(p) = w_fit F(x_dep) + w_dep E(x_dep) + w_flat E(x_flat) + w_reg/2 |p - p0|^2,
+//   J(p) = w_fit F(x_dep) + w_dep E(x_dep) + w_flat E(x_flat) + w_reg R(p),
+//   R(p) = 1/2 sum_s ((p_s - p0_s) / p0_s)^2,
 // F the fit of chosen vertices to target positions (vertex_targets.hpp), E
 // the total energy, x_dep the equilibrium at the deployed average opening
 // angle A and x_flat the one at the flat (start) state's average angle,
 // each under its average-angle constraint (average_constraint.hpp), p0 the
-// start's rest lengths.
+// start's rest lengths. A target surface moves the targets to the closest
+// points of the deployed joints at every evaluation (DesignOptions::retarget):
+// the gradient of the squared distance, x - c(x), needs no derivative of c.
 //
 // Gradient by the adjoint method. At a constrained equilibrium
 //   g(x, p) = tau a,  a . x = A,
@@ -22,6 +25,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -35,7 +39,7 @@ struct DesignWeights {
   double fit = 1.0;              // w_fit (1 / length^2 x energy, say)
   double deployed_energy = 0.0;  // w_dep
   double flat_energy = 0.0;      // w_flat; 0: the flat equilibrium is not solved at all
-  double regularization = 0.0;   // w_reg (energy / length^2)
+  double regularization = 0.0;   // w_reg (R is unit-free)
 };
 
 struct DesignOptions {
@@ -46,6 +50,9 @@ struct DesignOptions {
   // gradient are (the gradient is that of the exact equilibria).
   NewtonOptions newton;
   int deployment_steps = 10;  // continuation to A at construction
+  // When given: sets the targets' positions from the deployed equilibrium
+  // before the fit is evaluated (closest points of a target surface).
+  std::function<void(const RodLinkage& deployed, std::vector<VertexTarget>& targets)> retarget;
 };
 
 enum class DesignStatus {
@@ -72,15 +79,21 @@ class DesignObjective {
  public:
   // `flat`: the problem at its flat (start) state, whose average opening
   // angle is the flat equilibrium's. Deploys a copy to A (deploy(),
-  // deployment_steps steps). Throws ModelError for loads lumped on the
+  // deployment_steps steps). `flat_held`, when given, is the flat
+  // equilibrium's problem instead of `flat` (the same linkage under other
+  // supports: held in its plane). Throws ModelError for loads lumped on the
   // rest lengths or a target that is not a vertex (vertex_position_terms),
   // and std::runtime_error when the start's equilibria cannot be found.
-  DesignObjective(const LinkageProblem& flat, DesignOptions options);
+  DesignObjective(const LinkageProblem& flat, DesignOptions options,
+                  const LinkageProblem* flat_held = nullptr);
   ~DesignObjective();
 
   int num_parameters() const { return static_cast<int>(start_lengths_.size()); }
   const std::vector<double>& start_lengths() const { return start_lengths_; }
   const DesignOptions& options() const { return options_; }
+  void set_weights(const DesignWeights& weights) { options_.weights = weights; }
+  // The targets as last evaluated (moved by DesignOptions::retarget).
+  const std::vector<VertexTarget>& targets() const { return targets_; }
 
   // J and dJ/dp at p = lengths: re-solves the equilibria from the last
   // accepted ones (warm start). A failure leaves them as they were and is
@@ -97,12 +110,13 @@ class DesignObjective {
   // on the first failure.
   bool solve(const std::vector<double>& lengths, std::string& reason);
   // J's terms and value at the current equilibria.
-  void evaluate_terms(const std::vector<double>& lengths, DesignEvaluation& out) const;
+  void evaluate_terms(const std::vector<double>& lengths, DesignEvaluation& out);
   // dJ/dp; false when the adjoint has no factorization.
   bool gradient(const std::vector<double>& lengths, Eigen::VectorXd& out);
 
   DesignOptions options_;
   std::vector<double> start_lengths_;
+  std::vector<VertexTarget> targets_;
   std::unique_ptr<HeldEquilibrium> deployed_, flat_;
 };
 

@@ -2,6 +2,8 @@
 
 #include <vtkPointData.h>
 
+#include <cmath>
+
 #include "point_glyphs.hpp"
 #include "polydata_writer.hpp"
 #include "vtk_arrays.hpp"
@@ -39,8 +41,18 @@ void write_joints_file(const Snapshot& snapshot, const std::filesystem::path& pa
     point_data->AddArray(vector_array("pin_force_a", force_a));
     point_data->AddArray(vector_array("pin_force_b", force_b));
   }
+  bool with_targets = false;
+  std::vector<double> distances;
+  for (const JointSnapshot& joint : snapshot.joints) {
+    with_targets = with_targets || joint.target_distance;
+    distances.push_back(joint.target_distance.value_or(std::nan("")));
+  }
+  if (with_targets) point_data->AddArray(scalar_array("target_distance", distances));
   point_data->SetActiveVectors("normal");
-  add_units(*data, {{"opening_angle", "rad"}, {"pin_force_a", "force"}, {"pin_force_b", "force"}});
+  add_units(*data, {{"opening_angle", "rad"},
+                    {"pin_force_a", "force"},
+                    {"pin_force_b", "force"},
+                    {"target_distance", "length"}});
   write_polydata(*data, path, options);
 }
 

@@ -7,6 +7,8 @@
 //               valence        int         number of segments at the joint
 //               pin_force_a    3 x double  force the pin applies to rod A (force unit),
 //               pin_force_b    3 x double  and to rod B; only when the snapshot has them
+//               target_distance double     distance to the inverse design's target (length
+//                                          unit; NaN without one); only when a joint has one
 #pragma once
 
 #include <filesystem>

@@ -44,6 +44,9 @@ struct JointSnapshot {
   // Force the pin applies to rod A and to rod B (joint_forces.hpp), when
   // computed (final state); written only when every joint has them.
   std::optional<Eigen::Vector3d> pin_force_a, pin_force_b;
+  // Distance to the inverse design's target (length unit), when the joint
+  // has one; written when any joint has it (NaN for the others).
+  std::optional<double> target_distance;
 };
 
 struct Snapshot {
