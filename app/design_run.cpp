@@ -24,10 +24,6 @@ namespace xshell {
 
 namespace {
 
-// The design's equilibria are solved at least this tightly: the adjoint
-// gradient is that of exact equilibria (design_objective.hpp).
-constexpr double kDesignGradientTolerance = 1e-8;
-
 struct DesignSetup {
   LoadedRun run;
   DesignTargets targets;
@@ -125,7 +121,6 @@ DesignOptions design_options(const DesignSetup& s) {
   o.weights = {d.weights.fit, d.weights.deployed_energy, d.weights.flat_energy,
                d.weights.regularization};
   o.newton = newton_options(s.run.config.solver);
-  o.newton.gradient_tolerance = std::min(o.newton.gradient_tolerance, kDesignGradientTolerance);
   o.deployment_steps = d.steps;
   return o;
 }

@@ -8,6 +8,9 @@ namespace xshell::python {
 // _core.relax (relax_binding.cpp).
 void bind_relax(pybind11::module_& m);
 
+// _core.design (design_binding.cpp).
+void bind_design(pybind11::module_& m);
+
 // _core.Linkage (linkage_binding.cpp).
 void bind_linkage(pybind11::module_& m);
 

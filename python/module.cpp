@@ -6,8 +6,9 @@
 #include "bindings.hpp"
 
 PYBIND11_MODULE(_core, m) {
-  m.doc() = "xshell's engine: relax runs and the linkage model (see the package xshell)";
+  m.doc() = "xshell's engine: relax and design runs and the linkage model (see the package xshell)";
   m.attr("version") = XSHELL_VERSION;
   xshell::python::bind_relax(m);
   xshell::python::bind_linkage(m);
+  xshell::python::bind_design(m);
 }

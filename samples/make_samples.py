@@ -6,6 +6,8 @@ grid.obj: a flat 4 x 4 grid of straight rods crossing at right angles
   crossing to a free end; metres, spacing 0.25.
 saddle.obj: the same grid lifted onto a hyperbolic paraboloid z = k (x^2 - y^2),
   so the rods are curved in 3D.
+saddle_target.obj: a triangle mesh of the steeper paraboloid z = 0.9 (x^2 - y^2)
+  over [-0.6, 0.6]^2: the target surface of saddle_design.json (xshell design).
 """
 import os
 
@@ -44,7 +46,32 @@ def write(name, vertices, edges, comment):
             f.write(f"l {a + 1} {b + 1}\n")
 
 
+def surface(f, m=25, size=0.6):
+    """The graph z = f(x, y) over [-size, size]^2 as an m x m triangle mesh."""
+    vertices, faces = [], []
+    for i in range(m):
+        for j in range(m):
+            x, y = -size + 2 * size * j / (m - 1), -size + 2 * size * i / (m - 1)
+            vertices.append((x, y, f(x, y)))
+    for i in range(m - 1):
+        for j in range(m - 1):
+            a = i * m + j
+            faces += [(a, a + 1, a + m + 1), (a, a + m + 1, a + m)]
+    return vertices, faces
+
+
+def write_surface(name, vertices, faces, comment):
+    with open(os.path.join(HERE, name), "w") as f:
+        f.write(f"# {comment}\n")
+        for v in vertices:
+            f.write("v %.9g %.9g %.9g\n" % v)
+        for a, b, c in faces:
+            f.write(f"f {a + 1} {b + 1} {c + 1}\n")
+
+
 if __name__ == "__main__":
     write("grid.obj", *grid(), "flat 4 x 4 grid of straight rods, metres")
     write("saddle.obj", *grid(lift=lambda x, y: 0.6 * (x * x - y * y)),
           "4 x 4 grid on a hyperbolic paraboloid, metres")
+    write_surface("saddle_target.obj", *surface(lambda x, y: 0.9 * (x * x - y * y)),
+                  "target surface z = 0.9 (x^2 - y^2), metres")

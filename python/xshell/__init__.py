@@ -21,7 +21,7 @@ import numpy as np
 
 from . import _core
 
-__all__ = ["relax", "Result", "State", "Linkage", "__version__"]
+__all__ = ["relax", "Result", "State", "Linkage", "design", "DesignResult", "__version__"]
 __version__ = _core.version
 
 
@@ -164,6 +164,93 @@ def relax(config, solver=None, init=None, out=None, progress=None):
     if status == _core.EXIT_OUTPUT_FAILED:
         raise OSError(error)
     return Result(json.loads(summary), State(state, "the state of a run"), status)
+
+
+class DesignResult:
+    """What a design run found: the fields of design.json.
+
+    status, reason       "converged", "max_iterations", "interrupted" or "failed",
+                         and IPOPT's reason
+    rest_lengths         numpy float64 (segments,): the design, per OBJ edge
+    fit                  dict: max and rms distance of the targeted joints to
+                         their targets (length), targets (their count)
+    history              list of dicts, one per design iteration (design.json's)
+    iterations           design iterations
+    report               the dict that design.json holds
+    deployed_state       the optimized design's deployed State
+    flat_state           its flat State
+    exit_status          the command line's exit status (0 converged, 3 not, 130 interrupted)
+    """
+
+    def __init__(self, report, deployed_state, flat_state, exit_status):
+        self.report = report
+        self.deployed_state = deployed_state
+        self.flat_state = flat_state
+        self.exit_status = exit_status
+
+    status = property(lambda self: self.report["status"])
+    reason = property(lambda self: self.report["reason"])
+    fit = property(lambda self: dict(self.report["fit"]))
+    history = property(lambda self: list(self.report["history"]))
+    iterations = property(lambda self: self.report["iterations"])
+
+    @property
+    def rest_lengths(self):
+        return np.array(self.report["rest_lengths"], dtype=np.float64)
+
+    def __repr__(self):
+        return "<xshell.DesignResult %s after %d iterations: fit rms %.3e, max %.3e>" % (
+            self.status,
+            self.iterations,
+            self.report["fit"]["rms"],
+            self.report["fit"]["max"],
+        )
+
+
+def design(config, init=None, out=None, progress=None):
+    """Finds the rest lengths whose deployed shell fits the configuration's
+    "design" target, as `xshell design` does (README, "Design").
+
+    config    a configuration file's path, or a dict with its keys (with a
+              "design" section)
+    init      a State or a state.json path of the flat linkage to start from
+    out       None: no file is written; a folder: the command line's outputs
+              (design.json, deployed_state.json, flat_state.json, the VTK
+              series, flat_layout.obj, fabrication data) go there
+    progress  a callable receiving one dict per design iteration (an element
+              of design.json's history)
+
+    Returns a DesignResult (an optimization that stopped at its iteration
+    limit is one too: its status says so). Raises ValueError with the
+    command line's message for an invalid input, RuntimeError when the start
+    cannot be deployed, OSError when an output cannot be written. Ctrl-C
+    stops at the next design iteration (the best design so far reported and
+    written), then raises KeyboardInterrupt.
+    """
+    name, text, base = _configuration(config)
+    init_name, init_text = _initial_state(init)
+    status, error, report, deployed, flat = _core.design(
+        name,
+        text,
+        base,
+        out is not None,
+        None if out is None else os.fspath(out),
+        init_name,
+        init_text,
+        progress,
+    )
+    if status == _core.EXIT_INVALID_INPUT:
+        raise ValueError(error)
+    if status == _core.EXIT_OUTPUT_FAILED:
+        raise OSError(error)
+    if report is None:
+        raise RuntimeError(error)
+    return DesignResult(
+        json.loads(report),
+        State(deployed, "the deployed state of a design"),
+        State(flat, "the flat state of a design"),
+        status,
+    )
 
 
 class Linkage:
