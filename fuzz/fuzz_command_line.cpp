@@ -66,6 +66,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       require(!line.fabricate.config.empty() &&
               (!line.fabricate.out || !line.fabricate.out->empty()));
       break;
+    case xshell::Command::Design:
+      require(!line.design.config.empty() && (!line.design.out || !line.design.out->empty()) &&
+              (!line.design.init || !line.design.init->empty()));
+      break;
   }
   return 0;
 }

@@ -26,8 +26,7 @@ namespace {
 
 // (exit status, error message, design.json's text or None, deployed state
 // text, flat state text).
-py::tuple run(const DesignRequest& request, const std::optional<py::function>& progress,
-              bool log) {
+py::tuple run(const DesignRequest& request, const std::optional<py::function>& progress, bool log) {
   const py::module_ threading = py::module_::import("threading");
   const bool main_thread = threading.attr("current_thread")().is(threading.attr("main_thread")());
   std::atomic<bool> stop{false};

@@ -461,8 +461,9 @@ TEST_CASE("bad input: one vertex in two supports with conflicting displacements 
 TEST_CASE("bad input: command-line usage in one line naming what is wrong") {
   Scratch dir("usage");
   write_text(dir / "run.json", grid_config());
-  check_rejected(run_xshell("solve run.json", dir.path()), dir.path(),
-                 {"unknown command 'solve'", "relax, render and fabricate", "xshell --help"});
+  check_rejected(
+      run_xshell("solve run.json", dir.path()), dir.path(),
+      {"unknown command 'solve'", "relax, render, fabricate and design", "xshell --help"});
   check_rejected(run_xshell("", dir.path()), dir.path(), {"no command given"});
   check_rejected(run_xshell("--fast relax run.json", dir.path()), dir.path(),
                  {"unknown option '--fast'"});

@@ -96,7 +96,8 @@ TEST_CASE("design: rest lengths perturbed by up to 5% are recovered from their d
   // the dome) toward those joints.
   write_text(dir / "design.json",
              dome_config(3, R"(, "solver": {"gradient_tolerance": 1e-10},
-  "design": {"average_opening_angle": )" + std::to_string(angle) +
+  "design": {"average_opening_angle": )" +
+                                std::to_string(angle) +
                                 R"(, "target_joints": "target.json", "max_iterations": 200})"));
   const CommandResult r = run_xshell("design design.json", dir);
   CAPTURE(r.errors);

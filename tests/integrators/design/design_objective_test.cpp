@@ -92,6 +92,53 @@ TEST_CASE("Design objective: the adjoint gradient matches differences of re-solv
   CHECK(cases == 3);
 }
 
+TEST_CASE(
+    "Design objective: with targets moved to a surface's closest points, the gradient is exact") {
+  // The surface: the tilted plane n . x = c, whose closest point is the
+  // projection; every joint is attracted to it (as a target surface does).
+  std::mt19937 rng(21);
+  const LinkageProblem problem = perturbed_dome(rng);
+  DesignOptions o = design_options(problem, Terms::FitOnly);
+  const Eigen::Vector3d n = Eigen::Vector3d(0.2, -0.1, 1.0).normalized();
+  const double c = 0.08;
+  o.targets.clear();
+  for (int v = 0; v < 9; ++v) o.targets.push_back({v, Eigen::Vector3d::Zero(), 1.0});
+  int calls = 0;
+  o.retarget = [&](const RodLinkage& deployed, std::vector<VertexTarget>& targets) {
+    ++calls;
+    for (VertexTarget& t : targets) {
+      const Eigen::Vector3d x = deployed.vertex_position(t.vertex);
+      t.position = x - (n.dot(x) - c) * n;
+    }
+  };
+  DesignObjective design(problem, o);
+  std::vector<double> p = design.start_lengths();
+  std::uniform_real_distribution<double> factor(0.98, 1.02);
+  for (double& l : p) l *= factor(rng);
+  const DesignEvaluation at = design.evaluate(p);
+  REQUIRE(at.status == DesignStatus::Ok);
+  CHECK(calls == 1);
+  // F is half the squared distances to the plane, at the new equilibrium.
+  double distances = 0.0;
+  for (int v = 0; v < 9; ++v)
+    distances += 0.5 * std::pow(n.dot(design.deployed().linkage().vertex_position(v)) - c, 2);
+  CHECK(at.terms.fit == doctest::Approx(distances).epsilon(1e-12));
+  double error = 0.0;
+  for (int s = 0; s < design.num_parameters(); ++s) {
+    const double h = 1e-5 * p[s];
+    std::vector<double> plus = p, minus = p;
+    plus[s] += h;
+    minus[s] -= h;
+    const DesignEvaluation ep = design.evaluate(plus), em = design.evaluate(minus);
+    REQUIRE(ep.status == DesignStatus::Ok);
+    REQUIRE(em.status == DesignStatus::Ok);
+    error = std::max(error, std::abs((ep.value - em.value) / (2 * h) - at.gradient[s]));
+  }
+  const double relative = error / at.gradient.cwiseAbs().maxCoeff();
+  MESSAGE("surface targets: dJ/dp relative error " << relative);
+  CHECK(relative <= 1e-6);
+}
+
 TEST_CASE("Design objective reports failures as a status and keeps the last equilibria") {
   std::mt19937 rng(12);
   const LinkageProblem problem = perturbed_dome(rng);
