@@ -37,13 +37,14 @@ def grid(n=4, spacing=0.25, lift=None):
     return vertices, edges
 
 
-def write(name, vertices, edges, comment):
+def write(name, vertices, elements, comment, kind="l"):
+    """An OBJ file: the vertices, then the elements (edges "l" or faces "f")."""
     with open(os.path.join(HERE, name), "w") as f:
         f.write(f"# {comment}\n")
         for v in vertices:
             f.write("v %.9g %.9g %.9g\n" % v)
-        for a, b in edges:
-            f.write(f"l {a + 1} {b + 1}\n")
+        for element in elements:
+            f.write(kind + "".join(f" {i + 1}" for i in element) + "\n")
 
 
 def surface(f, m=25, size=0.6):
@@ -60,18 +61,9 @@ def surface(f, m=25, size=0.6):
     return vertices, faces
 
 
-def write_surface(name, vertices, faces, comment):
-    with open(os.path.join(HERE, name), "w") as f:
-        f.write(f"# {comment}\n")
-        for v in vertices:
-            f.write("v %.9g %.9g %.9g\n" % v)
-        for a, b, c in faces:
-            f.write(f"f {a + 1} {b + 1} {c + 1}\n")
-
-
 if __name__ == "__main__":
     write("grid.obj", *grid(), "flat 4 x 4 grid of straight rods, metres")
     write("saddle.obj", *grid(lift=lambda x, y: 0.6 * (x * x - y * y)),
           "4 x 4 grid on a hyperbolic paraboloid, metres")
-    write_surface("saddle_target.obj", *surface(lambda x, y: 0.9 * (x * x - y * y)),
-                  "target surface z = 0.9 (x^2 - y^2), metres")
+    write("saddle_target.obj", *surface(lambda x, y: 0.9 * (x * x - y * y)),
+          "target surface z = 0.9 (x^2 - y^2), metres", kind="f")

@@ -25,22 +25,28 @@ DesignScales design_scales(int targets, double diagonal, double energy_scale, in
   return s;
 }
 
+namespace {
+
+// Each of the four terms' fields divided by its scale (DesignWeights and
+// DesignTerms share their fields' names).
+template <typename T>
+T divided(const T& v, const DesignScales& scales) {
+  T out;
+  out.fit = v.fit / scales.fit;
+  out.deployed_energy = v.deployed_energy / scales.energy;
+  out.flat_energy = v.flat_energy / scales.energy;
+  out.regularization = v.regularization / scales.regularization;
+  return out;
+}
+
+}  // namespace
+
 DesignWeights scaled_weights(const DesignWeights& unit_free, const DesignScales& scales) {
-  DesignWeights w;
-  w.fit = unit_free.fit / scales.fit;
-  w.deployed_energy = unit_free.deployed_energy / scales.energy;
-  w.flat_energy = unit_free.flat_energy / scales.energy;
-  w.regularization = unit_free.regularization / scales.regularization;
-  return w;
+  return divided(unit_free, scales);
 }
 
 DesignTerms unit_free_terms(const DesignTerms& terms, const DesignScales& scales) {
-  DesignTerms t;
-  t.fit = terms.fit / scales.fit;
-  t.deployed_energy = terms.deployed_energy / scales.energy;
-  t.flat_energy = terms.flat_energy / scales.energy;
-  t.regularization = terms.regularization / scales.regularization;
-  return t;
+  return divided(terms, scales);
 }
 
 }  // namespace xshell
