@@ -7,8 +7,8 @@
 #include "design_targets.hpp"
 #include "integrators/deployment/average_constraint.hpp"
 #include "io/atomic_file.hpp"
+#include "io/design_config.hpp"
 #include "io/fabrication_file.hpp"
-#include "io/state_file.hpp"
 #include "io/vtk/linkage_snapshot.hpp"
 #include "io/vtk/vtk_series.hpp"
 
@@ -41,13 +41,6 @@ double flat_planarity(const LinkageProblem& flat) {
   double worst = 0.0;
   for (const Eigen::Vector3d& p : x) worst = std::max(worst, std::abs(p.z() - mean));
   return worst;
-}
-
-nlohmann::json weights_json(const DesignWeightsConfig& w) {
-  return {{"fit", w.fit},
-          {"deployed_energy", w.deployed_energy},
-          {"flat_energy", w.flat_energy},
-          {"regularization", w.regularization}};
 }
 
 nlohmann::json state_json(const LinkageProblem& problem) {
@@ -121,7 +114,7 @@ nlohmann::json design_report_json(const DesignReport& report, const Config& conf
           {"evaluations", r.evaluations},
           {"failed_evaluations", r.failed_evaluations},
           {"wall_seconds", report.wall_seconds},
-          {"weights", weights_json(config.design->weights)},
+          {"weights", design_json(*config.design)["weights"]},
           {"scales",
            {{"fit", report.scales.fit},
             {"energy", report.scales.energy},
@@ -140,12 +133,12 @@ nlohmann::json design_report_json(const DesignReport& report, const Config& conf
 }
 
 void write_design_outputs(const DesignReport& report, const Config& config,
-                          const Eigen::Vector3d& origin, const nlohmann::json& design) {
+                          const Eigen::Vector3d& origin, const nlohmann::json& design,
+                          const std::string& deployed_state, const std::string& flat_state) {
   const fs::path dir = config.output.directory;
   write_series(report, config, origin);
-  write_file_atomically(dir / "deployed_state.json",
-                        state_text(report.objective.deployed().linkage(), origin));
-  write_file_atomically(dir / "flat_state.json", state_text(report.flat.linkage(), origin));
+  write_file_atomically(dir / "deployed_state.json", deployed_state);
+  write_file_atomically(dir / "flat_state.json", flat_state);
   write_file_atomically(dir / "flat_layout.obj", flat_layout_obj(report.flat, origin));
   write_fabrication(report.flat.linkage(), fabrication_units(config), dir);
   write_file_atomically(dir / "design.json", design.dump(2) + "\n");

@@ -36,8 +36,10 @@ nlohmann::json history_record(const DesignIteration& it, const DesignScales& sca
 nlohmann::json design_report_json(const DesignReport& report, const Config& config);
 
 // Writes every file above into config.output.directory (which exists), design.json
-// last. Throws OutputError naming the file that failed.
+// last; `design` is design.json's content, the states state.json texts
+// (state_text). Throws OutputError naming the file that failed.
 void write_design_outputs(const DesignReport& report, const Config& config,
-                          const Eigen::Vector3d& origin, const nlohmann::json& design);
+                          const Eigen::Vector3d& origin, const nlohmann::json& design,
+                          const std::string& deployed_state, const std::string& flat_state);
 
 }  // namespace xshell

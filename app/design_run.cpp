@@ -134,16 +134,18 @@ DesignScales scales_of(const DesignObjective& objective) {
                        objective.num_parameters());
 }
 
-void say_iteration(std::ostream& log, const DesignIteration& it, const DesignTerms& t,
-                   double fit_rms) {
+// One progress line of a history record (history_record, design_outputs.hpp).
+void say_iteration(std::ostream& log, const nlohmann::json& r) {
   char line[320];
   std::snprintf(line, sizeof line,
                 "xshell: design: iteration %d: objective %.6e (fit %.3e, deployed energy %.3e, "
                 "flat energy %.3e, regularization %.3e); fit rms %.3e; optimality %.2e; "
                 "%d evaluations (%d failed); %.1f s\n",
-                it.iteration, it.objective, t.fit, t.deployed_energy, t.flat_energy,
-                t.regularization, fit_rms, it.optimality, it.evaluations, it.failed_evaluations,
-                it.seconds);
+                r["iteration"].get<int>(), r["objective"].get<double>(), r["fit"].get<double>(),
+                r["deployed_energy"].get<double>(), r["flat_energy"].get<double>(),
+                r["regularization"].get<double>(), r["fit_rms"].get<double>(),
+                r["optimality"].get<double>(), r["evaluations"].get<int>(),
+                r["failed_evaluations"].get<int>(), r["seconds"].get<double>());
   log << line << std::flush;
 }
 
@@ -178,11 +180,12 @@ DesignOutcome optimize(DesignSetup& s, const DesignHooks& hooks,
                        std::chrono::steady_clock::time_point start) {
   DesignOutcome outcome;
   const Config& c = s.run.config;
+  const DesignOptions options = design_options(s);
   std::optional<DesignObjective> objective;
   try {
     if (hooks.log)
       *hooks.log << "xshell: design: deploying to " << c.design->average_opening_angle << " rad\n";
-    objective.emplace(*s.run.problem, design_options(s), s.planar ? &*s.planar : nullptr);
+    objective.emplace(*s.run.problem, options, s.planar ? &*s.planar : nullptr);
   } catch (const ModelError& e) {
     outcome.exit_status = kExitInvalidInput;
     outcome.error = c.source + ": " + e.what();
@@ -193,7 +196,7 @@ DesignOutcome optimize(DesignSetup& s, const DesignHooks& hooks,
     return outcome;
   }
   const DesignScales scales = scales_of(*objective);
-  objective->set_weights(scaled_weights(design_options(s).weights, scales));
+  objective->set_weights(scaled_weights(options.weights, scales));
   DesignLoopOptions loop;
   loop.max_relative_change = c.design->bounds;
   loop.max_iterations = c.design->max_iterations;
@@ -201,8 +204,7 @@ DesignOutcome optimize(DesignSetup& s, const DesignHooks& hooks,
   const int targets = static_cast<int>(objective->targets().size());
   loop.on_iteration = [&](const DesignIteration& it) {
     const nlohmann::json record = history_record(it, scales, targets);
-    if (hooks.log)
-      say_iteration(*hooks.log, it, unit_free_terms(it.terms, scales), record["fit_rms"]);
+    if (hooks.log) say_iteration(*hooks.log, record);
     if (hooks.on_iteration) hooks.on_iteration(it, record);
   };
   const DesignLoopResult result = optimize_design(*objective, loop);
@@ -218,7 +220,8 @@ DesignOutcome optimize(DesignSetup& s, const DesignHooks& hooks,
   outcome.exit_status = exit_status_of(result.status);
   if (!s.run.write_files) return outcome;
   try {
-    write_design_outputs(report, c, s.run.setup.origin, *outcome.report);
+    write_design_outputs(report, c, s.run.setup.origin, *outcome.report, outcome.deployed_state,
+                         outcome.flat_state);
   } catch (const OutputError& e) {
     outcome.exit_status = kExitOutputFailed;
     outcome.error = e.what();
