@@ -59,8 +59,33 @@ struct ConstrainedNewtonSolver::Impl {
   ObjectiveEvaluator evaluator;
   CholeskySolver full;     // H, for the Schur complement
   CholeskySolver reduced;  // B^T H B, for the fallback and the stability test
+  ShiftMemory shift_memory;
+  // What the stability test factorized, unshifted, at the final state of
+  // the last solve: tangent() reuses it while the configuration is the same.
+  struct FinalFactorization {
+    Eigen::VectorXd q;  // empty: none
+    bool full = false, reduced = false;
+  } final_factorization;
   Impl(Objective& objective, const AverageConstraint& constraint, const NewtonOptions& options)
-      : objective(objective), constraint(constraint), options(options), evaluator(objective) {}
+      : objective(objective),
+        constraint(constraint),
+        options(options),
+        evaluator(objective),
+        shift_memory(options.shift) {}
+  // B^T H B, shifted by multiples of diag(B^T M B) when indefinite.
+  ShiftedFactorization factorize_reduced(const Eigen::SparseMatrix<double>& H,
+                                         const Eigen::VectorXd& mass) {
+    const ShiftedFactorization f =
+        factorize_with_shift(reduced, constraint.reduce(H), constraint.reduce_diagonal(mass),
+                             options.shift, shift_memory.first_tau());
+    shift_memory.record(f);
+    return f;
+  }
+  bool final_factorization_here() const {
+    const FinalFactorization& f = final_factorization;
+    return f.q.size() == objective.size() && f.q == objective.get();
+  }
+  void stability_test(ConstrainedRun& run);
   long factorizations() const {
     return full.stats().factorizations + reduced.stats().factorizations;
   }
@@ -115,6 +140,7 @@ ConstrainedNewtonResult ConstrainedNewtonSolver::solve(double target,
 // Reports the start as iteration 0.
 void ConstrainedNewtonSolver::Impl::start(ConstrainedRun& run) {
   run.factorizations_at_start = factorizations();
+  final_factorization.q.resize(0);
   evaluator.sync();
   evaluator.clear_failures();
   run.mass = objective.mass();
@@ -178,6 +204,7 @@ bool ConstrainedNewtonSolver::Impl::direction(ConstrainedRun& run,
   ConstrainedNewtonResult& result = run.result;
   run.report.shifted = false;
   run.report.shift = 0.0;
+  final_factorization.q.resize(0);
   const FactorizationStatus status = full.factorize(H);
   if (status == FactorizationStatus::NonFinite) {
     result.status = SolveStatus::NonFinite;
@@ -191,8 +218,7 @@ bool ConstrainedNewtonSolver::Impl::direction(ConstrainedRun& run,
     step.p = step.tau * x2 - x1;
     ++result.schur_iterations;
   } else {
-    const ShiftedFactorization f = factorize_with_shift(
-        reduced, constraint.reduce(H), constraint.reduce_diagonal(run.mass), options.shift);
+    const ShiftedFactorization f = factorize_reduced(H, run.mass);
     if (f.status != FactorizationStatus::PositiveDefinite) {
       result.status = f.status == FactorizationStatus::NonFinite ? SolveStatus::NonFinite
                                                                  : SolveStatus::LinearSolverFailed;
@@ -288,8 +314,7 @@ void ConstrainedNewtonSolver::Impl::record_step(ConstrainedRun& run, const Eigen
 // the solver escaped and iterates on.
 bool ConstrainedNewtonSolver::Impl::escape(ConstrainedRun& run) {
   ConstrainedNewtonResult& result = run.result;
-  if (result.status != SolveStatus::NonFinite)
-    result.stable = is_positive_definite(reduced, constraint.reduce(objective.hessian()));
+  if (result.status != SolveStatus::NonFinite) stability_test(run);
   if (!result.converged() || result.stable || result.saddle_escapes >= run.max_saddle_escapes)
     return false;
   // A saddle: leave it downhill along negative curvature, then iterate on.
@@ -315,6 +340,18 @@ bool ConstrainedNewtonSolver::Impl::escape(ConstrainedRun& run) {
   run.stalled = 0;
   result.stable = false;
   return true;
+}
+
+// stable: an unshifted LL^T of B^T H B succeeds. When H itself is positive
+// definite so is B^T H B (B has full column rank), and H's factorization is
+// what tangent() needs next: H is tried first, B^T H B only when H fails.
+void ConstrainedNewtonSolver::Impl::stability_test(ConstrainedRun& run) {
+  const Eigen::SparseMatrix<double>& H = objective.hessian();
+  FinalFactorization& f = final_factorization;
+  f.full = full.factorize(H) == FactorizationStatus::PositiveDefinite;
+  f.reduced = f.full || is_positive_definite(reduced, constraint.reduce(H));
+  f.q = objective.get();
+  run.result.stable = f.reduced;
 }
 
 void ConstrainedNewtonSolver::Impl::finish(ConstrainedRun& run) {
@@ -348,18 +385,22 @@ bool ConstrainedNewtonSolver::Impl::escape_saddle(ConstrainedRun& run) {
   return true;
 }
 
+long ConstrainedNewtonSolver::factorizations() const { return impl_->factorizations(); }
+
 Eigen::VectorXd ConstrainedNewtonSolver::tangent() {
   Impl& s = *impl_;
   const Eigen::VectorXd& a = constraint_.coefficients();
   const Eigen::SparseMatrix<double>& H = objective_.hessian();
-  if (s.full.factorize(H) == FactorizationStatus::PositiveDefinite) {
+  const bool reuse = s.final_factorization_here();
+  if (reuse ? s.final_factorization.full
+            : s.full.factorize(H) == FactorizationStatus::PositiveDefinite) {
     const Eigen::VectorXd x = s.full.solve(a);
     return x / a.dot(x);
   }
-  const ShiftedFactorization f =
-      factorize_with_shift(s.reduced, constraint_.reduce(H),
-                           constraint_.reduce_diagonal(objective_.mass()), options_.shift);
-  if (f.status != FactorizationStatus::PositiveDefinite) return {};
+  if (!(reuse && s.final_factorization.reduced) &&
+      s.factorize_reduced(H, objective_.mass()).status != FactorizationStatus::PositiveDefinite)
+    return {};
+  s.final_factorization.q.resize(0);  // its solvers now hold other matrices
   const Eigen::VectorXd t0 = a / a.squaredNorm();
   const Eigen::VectorXd Ht0 = H * t0;
   return t0 - constraint_.expand(s.reduced.solve(constraint_.restrict(Ht0)));
@@ -367,6 +408,7 @@ Eigen::VectorXd ConstrainedNewtonSolver::tangent() {
 
 Eigen::VectorXd ConstrainedNewtonSolver::adjoint(const Eigen::VectorXd& f) {
   Impl& s = *impl_;
+  s.final_factorization.q.resize(0);
   const Eigen::VectorXd& a = constraint_.coefficients();
   const Eigen::SparseMatrix<double>& H = objective_.hessian();
   if (s.full.factorize(H) == FactorizationStatus::PositiveDefinite) {

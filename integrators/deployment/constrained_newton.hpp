@@ -80,7 +80,13 @@ class ConstrainedNewtonSolver {
   // positive definite, t = t0 + B tz with t0 = a / (a . a) (the uniform
   // shift) and tz = -(B^T H B)^-1 B^T H t0 (shifted if indefinite). a . t = 1.
   // Returns an empty vector when no factorization could be made.
+  // Reuses the stability test's factorization when the configuration is
+  // still the last solve's final state (no factorization then when H or
+  // B^T H B was positive definite there).
   Eigen::VectorXd tangent();
+
+  // Numeric factorizations so far (solves, tangents and adjoints).
+  long factorizations() const;
 
   // The adjoint of the equilibrium at the objective's current configuration
   // (inverse design, docs/model.md section 9.7): lambda solving

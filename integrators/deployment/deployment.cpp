@@ -146,6 +146,7 @@ class Deployer {
       if (options_.predictor != DeploymentPredictor::UniformShift && change != 0.0) {
         const Eigen::VectorXd t = constrained_newton_->tangent();
         if (t.size() == q.size() && t.allFinite()) {
+          if (!path_.empty()) path_.back().tangent = t;  // for the next step's cubic
           Eigen::VectorXd predicted = q + change * t;
           if (options_.predictor == DeploymentPredictor::Quadratic)
             if (path_.size() == 2)
@@ -236,13 +237,18 @@ class Deployer {
     const Clock::time_point start = Clock::now();
     const LinkageProblem saved = problem_;
     Attempt a;
+    long predictor_factorizations = 0;  // of the tangent
     try {
+      const long before = constrained_newton_ ? constrained_newton_->factorizations() : 0;
       apply(s);
+      if (constrained_newton_)
+        predictor_factorizations = constrained_newton_->factorizations() - before;
       a = solve(s);
     } catch (const std::domain_error& e) {
       a = Attempt{};
       a.solve.reason = e.what();
     }
+    a.solve.factorizations += predictor_factorizations;
     result_.iterations += a.solve.iterations;
     result_.factorizations += a.solve.factorizations;
     if (!a.solve.converged()) {

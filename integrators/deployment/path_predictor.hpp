@@ -1,9 +1,16 @@
-// The curvature term of a continuation's predictor (docs/model.md 9.3):
-// along an equilibrium path q(A) with the tangent t = dq/dA at the last
-// equilibrium q (at A), the quadratic through the equilibrium before it,
-// q_prev at A - h_prev, predicts
-//   q(A + h) ~ q + h t + h^2 c,   c = (q_prev - q + h_prev t) / h_prev^2,
-// with an error O(h^3) (the tangent alone: O(h^2)).
+// The curvature terms of a continuation's predictor (docs/model.md 9.3):
+// along an equilibrium path q(A) with the tangent t1 = dq/dA at the last
+// equilibrium q1 (at A) and the equilibrium before it, q0 at A - h0,
+//  - the quadratic through q0 with the tangent t1 predicts
+//      q(A + h) ~ q1 + h t1 + (h/h0)^2 D,   D = q0 - q1 + h0 t1,
+//    with an error O(h^3) (the tangent alone: O(h^2));
+//  - when the tangent t0 at q0 is known too, the cubic (Hermite) through
+//    both equilibria and both tangents predicts
+//      q(A + h) ~ q1 + h t1 + (h/h0)^2 (3 D + h0 E) + (h/h0)^3 (2 D + h0 E),
+//    E = t0 - t1, with an error O(h^4).
+// Both terms are orthogonal to the constraint's coefficients a when
+// a . t0 = a . t1 = 1 (a . D = 0, a . E = 0): the prediction stays on
+// a . q = A + h.
 #pragma once
 
 #include <Eigen/Core>
@@ -14,11 +21,14 @@ namespace xshell {
 struct PathPoint {
   Eigen::VectorXd q;   // an equilibrium's unknowns
   double value = 0.0;  // the path parameter there (the average opening angle)
+  // dq/dA there, once computed (empty until then).
+  Eigen::VectorXd tangent = {};
 };
 
-// h^2 c on the unknowns marked in `comparable` (those whose values at q and
-// q_prev mean the same thing), 0 on the others and when h_prev = 0.
-// Sizes: q, t, previous.q and comparable alike.
+// The terms beyond q1 + h t1 above (cubic when previous.tangent has q's
+// size, else quadratic), on the unknowns marked in `comparable` (those
+// whose values at q1 and q0 mean the same thing), 0 on the others and when
+// h0 = 0. Sizes: q, t, previous.q and comparable alike.
 Eigen::VectorXd path_curvature_step(const PathPoint& previous, const PathPoint& last,
                                     const Eigen::VectorXd& tangent, double h,
                                     const std::vector<bool>& comparable);

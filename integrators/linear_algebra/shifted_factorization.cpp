@@ -1,13 +1,14 @@
 #include "integrators/linear_algebra/shifted_factorization.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace xshell {
 
 ShiftedFactorization factorize_with_shift(CholeskySolver& solver,
                                           const Eigen::SparseMatrix<double>& H,
-                                          const Eigen::VectorXd& mass,
-                                          const ShiftOptions& options) {
+                                          const Eigen::VectorXd& mass, const ShiftOptions& options,
+                                          double first_tau) {
   ShiftedFactorization result;
   result.status = solver.factorize(H);
   result.factorizations = 1;
@@ -17,7 +18,7 @@ ShiftedFactorization factorize_with_shift(CholeskySolver& solver,
   const double mass_norm = mass.norm();
   const double scale = mass_norm > 0.0 ? H.norm() / mass_norm : 0.0;
   if (!(scale > 0.0) || !std::isfinite(scale)) return result;  // H == 0 cannot be shifted usefully
-  double tau = options.initial_tau;
+  double tau = std::max(options.initial_tau, first_tau);
   for (int attempt = 0; attempt < options.max_attempts; ++attempt, tau *= options.growth) {
     const Eigen::VectorXd shift = (tau * scale) * mass;
     result.status = solver.factorize(H, &shift);

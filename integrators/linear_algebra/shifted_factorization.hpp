@@ -37,10 +37,34 @@ struct ShiftedFactorization {
 // of diag(mass) (size n, positive) as described above when H is not
 // positive definite. status is PositiveDefinite on success (solver ready),
 // NonFinite if H holds NaN/inf, NotPositiveDefinite if every attempt failed.
+// first_tau > initial_tau starts the shifted attempts there instead (a
+// warm start from the shift a nearby Hessian needed: ShiftMemory).
 ShiftedFactorization factorize_with_shift(CholeskySolver& solver,
                                           const Eigen::SparseMatrix<double>& H,
                                           const Eigen::VectorXd& mass,
-                                          const ShiftOptions& options = {});
+                                          const ShiftOptions& options = {}, double first_tau = 0.0);
+
+// The shift of the last shifted factorization in a sequence of nearby
+// Hessians (Newton's iterates, a continuation's steps), to start the next
+// search one growth factor below it rather than at initial_tau: where the
+// Hessians stay indefinite, each iteration then tries two or three shifts
+// instead of climbing the whole ladder again (Nocedal and Wright, Numerical
+// Optimization, 2006, algorithm 3.3). Each unshifted success of the matrix
+// it remembers lowers the start by one growth factor, so the memory fades
+// where that matrix is definite.
+class ShiftMemory {
+ public:
+  explicit ShiftMemory(const ShiftOptions& options) : options_(options) {}
+  double first_tau() const { return tau_ / options_.growth; }
+  void record(const ShiftedFactorization& f) {
+    if (f.status != FactorizationStatus::PositiveDefinite) return;
+    tau_ = f.shifted ? f.tau : tau_ / options_.growth;
+  }
+
+ private:
+  const ShiftOptions& options_;
+  double tau_ = 0.0;
+};
 
 // True iff LL^T of H itself succeeds: the equilibrium is a strict local
 // minimum (up to round-off). Never true for a saddle.

@@ -115,8 +115,11 @@ TEST_CASE(
     CHECK((objective.get() - q).norm() < 1e-10 * q.norm());
     CHECK(r.multiplier == doctest::Approx(tau).epsilon(1e-9));
     CHECK(c.value(objective.get()) == doctest::Approx(0.3).epsilon(1e-14));
-    // The path's tangent dq/dA: the KKT solution's derivative in A.
+    // The path's tangent dq/dA: the KKT solution's derivative in A, from
+    // the stability test's factorization (H when definite, else B^T H B).
+    const long factorizations = solver.factorizations();
     const Eigen::VectorXd t = solver.tangent();
+    CHECK(solver.factorizations() == factorizations);
     const Eigen::VectorXd exact = (kkt(K, f, c.coefficients(), 0.3 + 1e-3).first -
                                    kkt(K, f, c.coefficients(), 0.3 - 1e-3).first) /
                                   2e-3;

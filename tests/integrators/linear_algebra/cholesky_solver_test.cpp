@@ -146,4 +146,31 @@ TEST_CASE("factorize_with_shift makes an indefinite Hessian positive definite") 
   CHECK(g.factorizations == 1);
 }
 
+TEST_CASE("A shift memory starts the next search one step below the last shift") {
+  const int n = 30;
+  Eigen::SparseMatrix<double> H = random_symmetric(n, 2, 0.5, 13);
+  H.coeffRef(5, 5) = -2.0;
+  const Eigen::VectorXd mass = Eigen::VectorXd::LinSpaced(n, 1.0, 3.0);
+  const xshell::ShiftOptions options;
+  xshell::ShiftMemory memory(options);
+  CHECK(memory.first_tau() == 0.0);
+  CholeskySolver solver;
+  const xshell::ShiftedFactorization cold =
+      xshell::factorize_with_shift(solver, H, mass, options, memory.first_tau());
+  REQUIRE(cold.status == FactorizationStatus::PositiveDefinite);
+  memory.record(cold);
+  CHECK(memory.first_tau() == doctest::Approx(cold.tau / options.growth));
+  // The same Hessian again: the unshifted attempt, tau/4 (fails), tau.
+  const xshell::ShiftedFactorization warm =
+      xshell::factorize_with_shift(solver, H, mass, options, memory.first_tau());
+  REQUIRE(warm.status == FactorizationStatus::PositiveDefinite);
+  CHECK(warm.tau == doctest::Approx(cold.tau));
+  CHECK(warm.factorizations == 3);
+  CHECK(cold.factorizations > 3);
+  // A definite matrix fades the memory by one growth factor.
+  memory.record(xshell::factorize_with_shift(solver, random_symmetric(n, 2, 0.5, 14), mass, options,
+                                             memory.first_tau()));
+  CHECK(memory.first_tau() == doctest::Approx(cold.tau / (options.growth * options.growth)));
+}
+
 }  // namespace xshell::test
