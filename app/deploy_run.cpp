@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <stdexcept>
 #include <system_error>
 
@@ -174,16 +175,22 @@ DeploymentSummary deployment_summary(const Deployment& d, const DeploymentResult
 }
 
 // deployment.png from deployment.csv, when there is a table to plot.
-void write_plot(const fs::path& dir, bool has_table, bool messages, const UnitNames& units,
-                DeploymentSummary& ds) {
-  if (dir.empty()) return;  // a run that writes no files
+// The plot's child, started before the deployment (deployment_plot.hpp);
+// none for a run that writes no files. An earlier run's plot is removed at
+// once, so that none is ever left behind.
+std::unique_ptr<DeploymentPlotter> start_plot(const fs::path& dir, const UnitNames& units) {
+  if (dir.empty()) return nullptr;
   std::error_code ignored;
-  fs::remove(dir / kPlot, ignored);  // never leave an earlier run's plot behind
-  if (!has_table) return;
-  const PlotOutcome plot = plot_deployment(dir / kTable, dir / kPlot, units);
+  fs::remove(dir / kPlot, ignored);
+  return std::make_unique<DeploymentPlotter>(dir / kTable, dir / kPlot, units);
+}
+
+void finish_plot(DeploymentPlotter* plotter, bool has_table, bool messages, DeploymentSummary& ds) {
+  if (!plotter) return;
+  const PlotOutcome plot = plotter->finish(has_table);
   if (plot.written)
     ds.plot = kPlot;
-  else if (messages)
+  else if (has_table && messages)
     std::cerr << "xshell: " << kPlot << " skipped: " << plot.message << "\n";
 }
 
@@ -232,6 +239,7 @@ SolverRun run_deployment(const Config& config, LinkageProblem& problem, const fs
                          const RunHooks& hooks) {
   const Deployment& d = *config.deployment;
   DeploymentRecorder recorder(dir, hooks);
+  const std::unique_ptr<DeploymentPlotter> plotter = start_plot(dir, config.units);
   recorder.poll();
   const DeploymentResult result =
       deploy(problem, make_plan(d, problem), deployment_options(config), recorder.callbacks());
@@ -249,8 +257,8 @@ SolverRun run_deployment(const Config& config, LinkageProblem& problem, const fs
   DeploymentSummary ds = deployment_summary(d, result, problem);
   {
     const ScopedSeconds timer(hooks.output_seconds);
-    write_plot(dir, !result.steps.empty() && run.output_error.empty(), hooks.messages, config.units,
-               ds);
+    finish_plot(plotter.get(), !result.steps.empty() && run.output_error.empty(), hooks.messages,
+                ds);
   }
   if (hooks.messages)
     std::fprintf(

@@ -1,58 +1,23 @@
 #include "deployment_plot.hpp"
 
 #include <dlfcn.h>
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
+#include <pthread.h>
 #include <unistd.h>
 
-#include <cerrno>
+#include <csignal>
+#include <future>
 #include <string>
 #include <system_error>
+#include <thread>
 #include <vector>
 
-extern char** environ;
+#include "child_process.hpp"
 
 namespace xshell {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-// Runs `argv` (argv[0] looked up on PATH) with MPLBACKEND=Agg added to the
-// environment and its output discarded; returns whether it exited with 0.
-bool run_quietly(const std::vector<std::string>& argv) {
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  std::vector<std::string> env_strings = {"MPLBACKEND=Agg"};
-  for (char** e = environ; *e != nullptr; ++e)
-    if (std::string(*e).rfind("MPLBACKEND=", 0) != 0) env_strings.emplace_back(*e);
-  std::vector<char*> env;
-  for (std::string& e : env_strings) env.push_back(e.data());
-  env.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int spawned = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), env.data());
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) return false;
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) return false;
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
-}
-
-// The first interpreter that imports matplotlib, or "".
-std::string find_python() {
-  for (const char* candidate : {"python3", "/usr/bin/python3"})
-    if (run_quietly({candidate, "-c", "import matplotlib"})) return candidate;
-  return "";
-}
 
 // plot_deployment.py beside this program (the build tree) or in
 // ../share/xshell (an installation), or beside the shared object this code
@@ -81,31 +46,75 @@ PlotLabels plot_labels(const UnitNames& units) {
           "torque dE/dA [" + unit_label("force length/rad", units) + "]"};
 }
 
-PlotOutcome plot_deployment(const fs::path& csv, const fs::path& png, const UnitNames& units) {
-  PlotOutcome outcome;
-  const fs::path script = find_script();
-  if (script.empty()) {
-    outcome.message = "plot_deployment.py was not found beside the xshell program";
-    return outcome;
-  }
-  const std::string python = find_python();
-  if (python.empty()) {
+struct DeploymentPlotter::Impl {
+  fs::path script, csv, png;
+  PlotLabels labels;
+  std::promise<bool> decision;  // draw or not
+  PlotOutcome outcome;          // written by the worker before it ends
+  std::thread worker;
+  bool finished = false;
+
+  // The worker: a python3 that has loaded matplotlib ("ready"), waiting
+  // for the decision on its input.
+  void run() {
+    sigset_t pipe_signal;  // a child that closed its input: EPIPE, not SIGPIPE
+    sigemptyset(&pipe_signal);
+    sigaddset(&pipe_signal, SIGPIPE);
+    pthread_sigmask(SIG_BLOCK, &pipe_signal, nullptr);
+    if (script.empty()) script = find_script();
+    std::error_code error;
+    if (script.empty() || !fs::is_regular_file(script, error)) {
+      outcome.message = "plot_deployment.py was not found beside the xshell program";
+      return;
+    }
+    const fs::path temporary = png.parent_path() / ("." + png.filename().string() + ".tmp-" +
+                                                    std::to_string(getpid()) + "-plot.png");
+    for (const char* python : {"python3", "/usr/bin/python3"}) {
+      ChildProcess child({python, script.string(), "--wait", csv.string(), png.string(),
+                          temporary.string(), labels.energy, labels.torque},
+                         environment_with("MPLBACKEND", "Agg"));
+      if (!child.running() || child.read_line() != "ready") continue;
+      const bool draw = decision.get_future().get();
+      child.write(draw ? "draw\n" : "skip\n");
+      const int status = child.wait();
+      std::error_code ignored;
+      if (!draw) return;
+      if (status != 0) {
+        fs::remove(temporary, ignored);
+        outcome.message = std::string(python) + " failed to draw the plot";
+        return;
+      }
+      outcome.written = fs::exists(png, ignored);
+      if (!outcome.written) outcome.message = std::string(python) + " did not write the plot";
+      return;
+    }
     outcome.message = "no python3 with matplotlib found (Debian package python3-matplotlib)";
-    return outcome;
   }
-  const fs::path temporary = png.parent_path() / ("." + png.filename().string() + ".tmp-" +
-                                                  std::to_string(getpid()) + "-plot.png");
-  std::error_code ignored;
-  const PlotLabels labels = plot_labels(units);
-  if (!run_quietly({python, script.string(), csv.string(), png.string(), temporary.string(),
-                    labels.energy, labels.torque})) {
-    fs::remove(temporary, ignored);
-    outcome.message = python + " failed to draw the plot";
-    return outcome;
+};
+
+DeploymentPlotter::DeploymentPlotter(fs::path csv, fs::path png, UnitNames units, fs::path script)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->script = std::move(script);
+  impl_->csv = std::move(csv);
+  impl_->png = std::move(png);
+  impl_->labels = plot_labels(units);
+  impl_->worker = std::thread([impl = impl_.get()] { impl->run(); });
+}
+
+DeploymentPlotter::~DeploymentPlotter() { finish(false); }
+
+PlotOutcome DeploymentPlotter::finish(bool draw) {
+  Impl& s = *impl_;
+  if (!s.finished) {
+    s.finished = true;
+    s.decision.set_value(draw);  // unread when the worker found no python
+    s.worker.join();
   }
-  outcome.written = fs::exists(png, ignored);
-  if (!outcome.written) outcome.message = python + " did not write the plot";
-  return outcome;
+  return s.outcome;
+}
+
+PlotOutcome plot_deployment(const fs::path& csv, const fs::path& png, const UnitNames& units) {
+  return DeploymentPlotter(csv, png, units).finish(true);
 }
 
 }  // namespace xshell

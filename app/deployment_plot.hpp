@@ -9,6 +9,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "io/unit_names.hpp"
@@ -27,8 +28,33 @@ struct PlotLabels {
 };
 PlotLabels plot_labels(const UnitNames& units);
 
-// Draws `csv` (the deployment table) into `png`, atomically (a temporary
-// name in the same directory, then renamed), its axes labelled with `units`.
+// The plot of a table still being written: the constructor starts, in a
+// thread of its own, the first python3 (on PATH, else /usr/bin/python3)
+// whose script loads matplotlib, which takes about half a second, while the
+// linkage deploys; finish() then has it draw the complete table (or not)
+// and waits for it. The picture is written atomically (a temporary name in
+// png's folder, then renamed). The destructor finishes without drawing.
+class DeploymentPlotter {
+ public:
+  // `script`: plot_deployment.py's path, found as the header says when
+  // empty.
+  DeploymentPlotter(std::filesystem::path csv, std::filesystem::path png, UnitNames units = {},
+                    std::filesystem::path script = {});
+  ~DeploymentPlotter();
+  DeploymentPlotter(const DeploymentPlotter&) = delete;
+  DeploymentPlotter& operator=(const DeploymentPlotter&) = delete;
+
+  // Draws `csv` into `png` when `draw`; the outcome (not written, no
+  // message, when not asked to draw). Later calls return the same outcome.
+  PlotOutcome finish(bool draw);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Draws `csv` (the deployment table) into `png` at once, its axes labelled
+// with `units`.
 PlotOutcome plot_deployment(const std::filesystem::path& csv, const std::filesystem::path& png,
                             const UnitNames& units = {});
 

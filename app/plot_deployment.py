@@ -2,7 +2,11 @@
 opening angle, drawn from deployment.csv with matplotlib.
 
 Run by xshell (app/deployment_plot.cpp) as
-    python3 plot_deployment.py TABLE PICTURE TEMPORARY [ENERGY_LABEL TORQUE_LABEL]
+    python3 plot_deployment.py --wait TABLE PICTURE TEMPORARY [ENERGY_LABEL TORQUE_LABEL]
+which loads matplotlib (exit status 3 when it cannot), prints "ready", and
+draws once a line "draw" arrives on its input (any other line, or the end
+of the input, ends it without drawing): xshell starts it before the
+deployment, which writes TABLE meanwhile. Without --wait it draws at once.
 The picture is drawn to TEMPORARY (in PICTURE's folder) and renamed onto
 PICTURE, so that PICTURE is either absent or complete. The labels name the
 energy and torque axes with their units (e.g. "energy [N mm]").
@@ -12,10 +16,16 @@ import math
 import os
 import sys
 
-import matplotlib
+if sys.argv[1:2] == ["--wait"]:
+    os.nice(10)  # loading beside the deployment's solve: yield the cores to it
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+try:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+except ImportError:
+    sys.exit(3)
 
 
 def main(table, picture, temporary, energy_label="energy",
@@ -46,4 +56,10 @@ def main(table, picture, temporary, energy_label="energy",
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:6])
+    if sys.argv[1:2] == ["--wait"]:
+        print("ready", flush=True)
+        if sys.stdin.readline().strip() != "draw":
+            sys.exit(0)
+        main(*sys.argv[2:7])
+    else:
+        main(*sys.argv[1:6])

@@ -26,6 +26,7 @@ void write_polydata(vtkPolyData& data, const std::filesystem::path& path,
     writer->SetDataModeToAppended();
     writer->EncodeAppendedDataOff();  // raw bytes, not base64
     writer->SetCompressorTypeToZLib();
+    writer->SetCompressionLevel(1);
   }
   if (writer->Write() != 1 || writer->GetErrorCode() != vtkErrorCode::NoError)
     throw OutputError(path, std::string("VTK could not serialize the poly data (") +
