@@ -25,39 +25,79 @@ RunOutputs::RunOutputs(const fs::path& dir, const Config& config, const LinkageP
   series_.emplace(dir, options);
 }
 
+RunOutputs::~RunOutputs() { finish_in_flight(); }
+
 void RunOutputs::step(double time, bool force) {
   if (failed() || (!force && time == last_time_)) return;
   if (force && time == last_time_) return;  // already written
   const ScopedSeconds timer(&seconds_);
+  finish_in_flight();
+  if (failed()) return;
   try {
-    if (series_->write(linkage_snapshot(problem_.linkage(), origin_, time), force)) {
-      last_time_ = time;
-      // For save_last_written(), with what its summary reports: computed
-      // here from the live problem, because a LinkageProblem built there
-      // (its Hessian pattern included) took seconds on large linkages,
-      // after the grace period (6.7 s at 1,371 joints, 10 edges per
-      // segment, on a loaded machine).
-      LastWritten written{problem_.linkage(), problem_.energy(), problem_.vertex_positions(),
-                          problem_.opening_angles()};
+    if (!series_->due(force)) return;
+    Snapshot snapshot = linkage_snapshot(problem_.linkage(), origin_, time);
+    last_time_ = time;
+    // For save_last_written(), with what its summary reports: computed
+    // here from the live problem, because a LinkageProblem built there
+    // (its Hessian pattern included) took seconds on large linkages,
+    // after the grace period (6.7 s at 1,371 joints, 10 edges per
+    // segment, on a loaded machine).
+    LastWritten written{problem_.linkage(), problem_.energy(), problem_.vertex_positions(),
+                        problem_.opening_angles()};
+    {
       const std::lock_guard<std::mutex> lock(last_written_mutex_);
       last_written_.emplace(std::move(written));
     }
-    if (series_->thinnings() > warned_thinnings_) {  // once per thinning: a few lines at most
-      warned_thinnings_ = series_->thinnings();
-      if (log_)
-        *log_ << "xshell: warning: the VTK series reached its " << max_steps_
-              << " steps (output.max_steps): every other step removed, 1 in " << series_->every()
-              << " written from now on\n";
-    }
-  } catch (const OutputError& e) {
-    error_ = e.what();  // names the file
+    write_in_background(std::move(snapshot));
   } catch (const std::exception& e) {
     error_ = "cannot write the VTK step " + std::to_string(series_->steps_written()) + " in '" +
              printable(dir_.string()) + "': " + e.what();
   }
 }
 
+void RunOutputs::write_in_background(Snapshot snapshot) {
+  std::shared_future<void> job =
+      std::async(std::launch::async, [this, snapshot = std::move(snapshot)] {
+        series_->write_now(snapshot);
+      }).share();
+  const std::lock_guard<std::mutex> lock(in_flight_mutex_);
+  in_flight_ = std::move(job);
+}
+
+// Waits for the step in flight; its error becomes error(), and a thinning
+// of the series it made is said (here, on the solver's thread).
+void RunOutputs::finish_in_flight() {
+  std::shared_future<void> job;
+  {
+    const std::lock_guard<std::mutex> lock(in_flight_mutex_);
+    job = in_flight_;
+  }
+  if (!job.valid()) return;
+  job.wait();
+  {
+    const std::lock_guard<std::mutex> lock(in_flight_mutex_);
+    in_flight_ = {};
+  }
+  try {
+    job.get();
+  } catch (const OutputError& e) {
+    if (!failed()) error_ = e.what();  // names the file
+  } catch (const std::exception& e) {
+    if (!failed())
+      error_ = "cannot write the VTK step " + std::to_string(series_->steps_written()) + " in '" +
+               printable(dir_.string()) + "': " + e.what();
+  }
+  if (series_->thinnings() > warned_thinnings_) {  // once per thinning: a few lines at most
+    warned_thinnings_ = series_->thinnings();
+    if (log_)
+      *log_ << "xshell: warning: the VTK series reached its " << max_steps_
+            << " steps (output.max_steps): every other step removed, 1 in " << series_->every()
+            << " written from now on\n";
+  }
+}
+
 void RunOutputs::finish_series_and_state() {
+  finish_in_flight();
   try {
     series_->close();
     write_state((dir_ / "state.json").string(), problem_.linkage(), origin_);
@@ -75,6 +115,12 @@ void RunOutputs::write_summary(const RunSummary& summary) {
 }
 
 bool RunOutputs::save_last_written(RunSummary started, const std::string& reason) {
+  std::shared_future<void> job;
+  {
+    const std::lock_guard<std::mutex> lock(in_flight_mutex_);
+    job = in_flight_;
+  }
+  if (job.valid()) job.wait();  // the last written step's files are complete
   const std::lock_guard<std::mutex> lock(last_written_mutex_);
   if (!last_written_) return false;
   started.status = to_string(SolveStatus::Interrupted);

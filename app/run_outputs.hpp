@@ -3,10 +3,18 @@
 // and summary.json. The first output error is remembered rather than thrown,
 // so that the solvers' callbacks never throw; the run then stops
 // (relax_run.hpp) and reports it.
+//
+// A step's snapshot is taken from the problem at once; its files are
+// written on a thread of their own while the solver goes on (encoding and
+// compressing them cost as much as several Newton iterations on the
+// designs). One step is in flight at most: the next step, the final files
+// and save_last_written() wait for it, so that the files appear in the
+// order of the steps and an error surfaces at the next step.
 #pragma once
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <future>
 #include <mutex>
 #include <optional>
 #include <ostream>
@@ -36,7 +44,8 @@ class RunOutputs {
   void finish_series_and_state();
   void write_summary(const RunSummary& summary);
 
-  // Wall seconds spent in step() so far.
+  // Wall seconds spent in step() so far (the snapshots, and waits for a
+  // write still in flight; not the background writes themselves).
   double seconds() const { return seconds_; }
 
   // From another thread, while the solver still runs (a signal's grace
@@ -45,10 +54,15 @@ class RunOutputs {
   // Returns false when no step was written yet.
   bool save_last_written(RunSummary started, const std::string& reason);
 
+  // Waits for the step in flight (an error it had becomes error()).
+  ~RunOutputs();
   bool failed() const { return !error_.empty(); }
   const std::string& error() const { return error_; }
 
  private:
+  void finish_in_flight();
+  void write_in_background(Snapshot snapshot);
+
   std::filesystem::path dir_;
   const LinkageProblem& problem_;
   Eigen::Vector3d origin_;
@@ -68,6 +82,10 @@ class RunOutputs {
   int warned_thinnings_ = 0;
   double seconds_ = 0.0;
   std::string error_;
+  // The step being written (shared: save_last_written() waits for it from
+  // another thread); in_flight_mutex_ guards the handle, not the write.
+  std::mutex in_flight_mutex_;
+  std::shared_future<void> in_flight_;
 };
 
 }  // namespace xshell

@@ -40,9 +40,19 @@ VtkSeries::~VtkSeries() {
 }
 
 bool VtkSeries::write(const Snapshot& snapshot, bool force) {
+  if (!due(force)) return false;
+  write_now(snapshot);
+  return true;
+}
+
+bool VtkSeries::due(bool force) {
   if (closed_) throw std::logic_error("VTK series: write() after close()");
   ++calls_since_write_;
-  if (!force && calls_since_write_ < options_.every) return false;
+  return force || calls_since_write_ >= options_.every;
+}
+
+void VtkSeries::write_now(const Snapshot& snapshot) {
+  if (closed_) throw std::logic_error("VTK series: write() after close()");
   validate(snapshot);
 
   const WriteOptions format{options_.format};
@@ -78,7 +88,6 @@ bool VtkSeries::write(const Snapshot& snapshot, bool force) {
   calls_since_write_ = 0;
   if (options_.max_steps >= 2 && steps_kept() >= options_.max_steps) thin();
   write_pvd();
-  return true;
 }
 
 // Keeps the steps at even positions and the latest; removes the others'

@@ -57,6 +57,13 @@ class VtkSeries {
   // lists only complete steps), std::logic_error after close().
   bool write(const Snapshot& snapshot, bool force = false);
 
+  // write() in two parts, for a caller that builds the snapshot only when
+  // it will be written (and may write it on another thread, one call at a
+  // time): due() counts the call and says whether it writes; write_now()
+  // writes unconditionally (and throws as write() does).
+  bool due(bool force = false);
+  void write_now(const Snapshot& snapshot);
+
   // Rewrites series.pvd a last time; later write() calls throw. Idempotent.
   void close();
 
