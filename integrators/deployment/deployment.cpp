@@ -208,6 +208,28 @@ class Deployer {
     return a;
   }
 
+  // solve(s), by Newton within DeploymentOptions::step_iterations for the
+  // first attempt at every step but the start: a step that has not
+  // converged by then fails and is halved, and its retries keep Newton's
+  // own limit (a fold of the path, where any increment needs a long
+  // descent, is still crossed).
+  Attempt solve_within_budget(double s, int step, int halvings) {
+    const long budget = options_.step_iterations;
+    if (budget <= 0 || step == 0 || halvings > 0 || options_.max_halvings == 0 ||
+        options_.solver != DeploymentSolver::Newton)
+      return solve(s);
+    long reports = 0;  // the start's included
+    bool over = false;
+    Attempt a = solve(s, [&] { return over = ++reports > budget; });
+    const bool stopped = callbacks_.stop && callbacks_.stop->load();
+    if (over && a.solve.status == SolveStatus::Interrupted && !stopped) {
+      a.solve.status = SolveStatus::IterationLimit;
+      a.solve.reason = "no equilibrium within the step's " + std::to_string(budget) +
+                       " iterations (DeploymentOptions::step_iterations)";
+    }
+    return a;
+  }
+
   // dE/dtheta along the prescribed path (see the header), by a central
   // difference in the prescribed angles at the current equilibrium.
   double prescribed_torque() {
@@ -243,7 +265,7 @@ class Deployer {
       apply(s);
       if (constrained_newton_)
         predictor_factorizations = constrained_newton_->factorizations() - before;
-      a = solve(s);
+      a = solve_within_budget(s, step, halvings);
     } catch (const std::domain_error& e) {
       a = Attempt{};
       a.solve.reason = e.what();

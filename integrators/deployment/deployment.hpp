@@ -24,7 +24,8 @@
 //
 // Continuation: the path parameter s runs from 0 (the start) to 1 (the
 // target) in `steps` equal increments. Step 0 solves at the start's own
-// value. A step whose solve fails is undone (the problem is restored to the
+// value. A step whose solve fails, or whose first attempt takes more than
+// step_iterations Newton iterations, is undone (the problem is restored to the
 // last accepted state) and retried with half the increment, at most
 // max_halvings times in a row; after a success the increment doubles back
 // up to the nominal one, and steps always land on the nominal grid
@@ -96,6 +97,17 @@ struct DeploymentOptions {
   NewtonOptions newton;      // line_search is ignored under the average constraint
   DynamicsOptions dynamics;  // per step, from its start (DynamicsOptions::start)
   int max_halvings = 6;      // consecutive halvings of a failing increment
+  // Newton iterations the first attempt at a step may take (saddle escapes
+  // and the descents from them included) before it fails and the increment
+  // is halved; 0: Newton's own limit (newton.max_iterations, counted again
+  // from each saddle left). The start (step 0) and the retries keep
+  // Newton's limit, so that a fold of the path, past which every increment
+  // needs a long descent, is still crossed (bounding the retries too made
+  // the largest design's increments shrink without end there). A smaller
+  // increment is cheaper than a long struggle: on scary_face, attempts that
+  // left a saddle crept for their whole 300 iterations, while their halves
+  // converged in 3.
+  long step_iterations = 60;
   // The user's branch (branch_bias.hpp): at every step a converged saddle
   // is left (newton.escape, dynamics.escape; their bias is set from this
   // direction) on the side where the vertices' mean displacement along it

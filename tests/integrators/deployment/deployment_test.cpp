@@ -251,6 +251,46 @@ TEST_CASE("A failing step is halved and retried, the deployment reports a step i
   CHECK(average_opening_angle(again.linkage()) == doctest::Approx(start).epsilon(1e-14));
 }
 
+TEST_CASE("A first attempt beyond the step's iteration budget is halved; retries are not bound") {
+  const double start = average_opening_angle(dome_problem(3).linkage());
+  LinkageProblem free = dome_problem(3);
+  const DeploymentOptions unbounded = tight(DeploymentSolver::Newton);
+  const DeploymentResult reference = deploy(free, average_plan(start + 0.4, 1), unbounded);
+  REQUIRE(reference.converged());
+  REQUIRE(reference.steps.size() == 2);
+  REQUIRE(reference.steps[1].iterations > 2);  // more than the budget below
+
+  LinkageProblem problem = dome_problem(3);
+  DeploymentOptions options = unbounded;
+  options.step_iterations = 2;
+  const DeploymentResult r = deploy(problem, average_plan(start + 0.4, 1), options);
+  CAPTURE(r.reason);
+  REQUIRE(r.converged());
+  // Every step's first attempt had 2 iterations; a step that needed more
+  // was accepted at its first retry, which had as many as it needed.
+  REQUIRE(r.steps.size() >= 3);
+  CHECK(r.steps[1].halvings == 1);
+  int retried = 0;
+  for (size_t k = 1; k < r.steps.size(); ++k) {
+    CAPTURE(k);
+    CHECK(r.steps[k].halvings <= 1);
+    if (r.steps[k].halvings == 0) CHECK(r.steps[k].iterations <= 2);
+    retried += r.steps[k].halvings;
+  }
+  CHECK(r.failed_attempts == retried);
+  CHECK(r.steps.back().fraction == 1.0);
+  // The same end state.
+  for (int v = 0; v < static_cast<int>(problem.linkage().graph().vertices.size()); ++v)
+    CHECK((problem.linkage().vertex_position(v) - free.linkage().vertex_position(v)).norm() <=
+          1e-8);
+  // With no halving allowed there is no budget.
+  LinkageProblem again = dome_problem(3);
+  options.max_halvings = 0;
+  const DeploymentResult single = deploy(again, average_plan(start + 0.4, 1), options);
+  CHECK(single.converged());
+  CHECK(single.failed_attempts == 0);
+}
+
 }  // namespace xshell::test
 
 namespace xshell::test {
