@@ -106,8 +106,10 @@ struct DeploymentOptions {
   // the largest design's increments shrink without end there). A smaller
   // increment is cheaper than a long struggle: on scary_face, attempts that
   // left a saddle crept for their whole 300 iterations, while their halves
-  // converged in 3.
-  long step_iterations = 60;
+  // converged in 3. Benchmark deployments (bench/deployments.py), Newton
+  // iterations: scary_face 1,572 without a budget, 581 with 60, 751 with
+  // 100; the largest design 898, 1,304 and 698.
+  long step_iterations = 100;
   // The user's branch (branch_bias.hpp): at every step a converged saddle
   // is left (newton.escape, dynamics.escape; their bias is set from this
   // direction) on the side where the vertices' mean displacement along it
