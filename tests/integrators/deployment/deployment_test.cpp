@@ -251,7 +251,8 @@ TEST_CASE("A failing step is halved and retried, the deployment reports a step i
   CHECK(average_opening_angle(again.linkage()) == doctest::Approx(start).epsilon(1e-14));
 }
 
-TEST_CASE("A first attempt beyond the step's iteration budget is halved; retries are not bound") {
+TEST_CASE(
+    "A first attempt beyond the step's iteration budget is halved, its retries are not bound") {
   const double start = average_opening_angle(dome_problem(3).linkage());
   LinkageProblem free = dome_problem(3);
   const DeploymentOptions unbounded = tight(DeploymentSolver::Newton);
