@@ -174,7 +174,6 @@ DeploymentSummary deployment_summary(const Deployment& d, const DeploymentResult
   return ds;
 }
 
-// deployment.png from deployment.csv, when there is a table to plot.
 // The plot's child, started before the deployment (deployment_plot.hpp);
 // none for a run that writes no files. An earlier run's plot is removed at
 // once, so that none is ever left behind.

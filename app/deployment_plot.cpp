@@ -29,7 +29,7 @@ fs::path find_script() {
   if (!error)
     folders = {program.parent_path(), program.parent_path().parent_path() / "share" / "xshell"};
   Dl_info info;
-  if (dladdr(reinterpret_cast<void*>(&plot_deployment), &info) != 0 && info.dli_fname)
+  if (dladdr(reinterpret_cast<void*>(&plot_labels), &info) != 0 && info.dli_fname)
     folders.push_back(fs::path(info.dli_fname).parent_path());
   for (const fs::path& folder : folders)
     if (fs::is_regular_file(folder / "plot_deployment.py", error))
@@ -111,10 +111,6 @@ PlotOutcome DeploymentPlotter::finish(bool draw) {
     s.worker.join();
   }
   return s.outcome;
-}
-
-PlotOutcome plot_deployment(const fs::path& csv, const fs::path& png, const UnitNames& units) {
-  return DeploymentPlotter(csv, png, units).finish(true);
 }
 
 }  // namespace xshell

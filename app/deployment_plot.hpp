@@ -53,9 +53,4 @@ class DeploymentPlotter {
   std::unique_ptr<Impl> impl_;
 };
 
-// Draws `csv` (the deployment table) into `png` at once, its axes labelled
-// with `units`.
-PlotOutcome plot_deployment(const std::filesystem::path& csv, const std::filesystem::path& png,
-                            const UnitNames& units = {});
-
 }  // namespace xshell
