@@ -85,8 +85,6 @@ bool ChildProcess::write(const std::string& text) {
   return input_ >= 0;
 }
 
-void ChildProcess::close_input() { close_fd(input_); }
-
 int ChildProcess::wait() {
   close_fd(input_);
   close_fd(output_);

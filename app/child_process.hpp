@@ -27,7 +27,6 @@ class ChildProcess {
   std::string read_line();
   // Writes `text` to its input; false when it has closed it.
   bool write(const std::string& text);
-  void close_input();
   // Closes its input and waits; its exit status, or -1 when it was killed
   // by a signal or never started.
   int wait();

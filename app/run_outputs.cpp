@@ -27,6 +27,12 @@ RunOutputs::RunOutputs(const fs::path& dir, const Config& config, const LinkageP
 
 RunOutputs::~RunOutputs() { finish_in_flight(); }
 
+// An error of the step being written that names no file.
+std::string RunOutputs::step_error(const std::string& what) const {
+  return "cannot write the VTK step " + std::to_string(series_->steps_written()) + " in '" +
+         printable(dir_.string()) + "': " + what;
+}
+
 void RunOutputs::step(double time, bool force) {
   if (failed() || (!force && time == last_time_)) return;
   if (force && time == last_time_) return;  // already written
@@ -50,8 +56,7 @@ void RunOutputs::step(double time, bool force) {
     }
     write_in_background(std::move(snapshot));
   } catch (const std::exception& e) {
-    error_ = "cannot write the VTK step " + std::to_string(series_->steps_written()) + " in '" +
-             printable(dir_.string()) + "': " + e.what();
+    error_ = step_error(e.what());
   }
 }
 
@@ -83,9 +88,7 @@ void RunOutputs::finish_in_flight() {
   } catch (const OutputError& e) {
     if (!failed()) error_ = e.what();  // names the file
   } catch (const std::exception& e) {
-    if (!failed())
-      error_ = "cannot write the VTK step " + std::to_string(series_->steps_written()) + " in '" +
-               printable(dir_.string()) + "': " + e.what();
+    if (!failed()) error_ = step_error(e.what());
   }
   if (series_->thinnings() > warned_thinnings_) {  // once per thinning: a few lines at most
     warned_thinnings_ = series_->thinnings();

@@ -61,6 +61,7 @@ class RunOutputs {
 
  private:
   void finish_in_flight();
+  std::string step_error(const std::string& what) const;
   void write_in_background(Snapshot snapshot);
 
   std::filesystem::path dir_;
