@@ -55,6 +55,7 @@
 #include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/newton/newton.hpp"
 #include "io/config.hpp"
+#include "io/input_error.hpp"
 #include "io/obj_reader.hpp"
 #include "io/problem_setup.hpp"
 #include "linkage/statics_problem.hpp"
@@ -505,8 +506,14 @@ int main(int argc, char** argv) {
       BenchCase c;
       c.name = "samples/" + path.stem().string();
       c.kind = "sample";
-      c.setup =
-          std::make_shared<const ProblemSetup>(make_problem_setup(config, read_obj(path.string())));
+      LineGraph graph;
+      try {
+        graph = read_obj(path.string());
+      } catch (const InputError& e) {  // a surface (a design's target), not a linkage
+        std::printf("skipped %s: %s\n", c.name.c_str(), e.what());
+        continue;
+      }
+      c.setup = std::make_shared<const ProblemSetup>(make_problem_setup(config, graph));
       c.subdivisions = c.setup->options.subdivisions;
       c.gravity = c.setup->statics.gravity.squaredNorm() > 0.0;
       cases.push_back(c);
