@@ -4,7 +4,10 @@
 // update and joint fold) that the solvers call between iterations.
 #pragma once
 
+#include <optional>
+
 #include "integrators/common/objective.hpp"
+#include "linkage/edge_rotation_path.hpp"
 #include "linkage/statics_problem.hpp"
 
 namespace xshell {
@@ -25,11 +28,18 @@ class LinkageObjective : public Objective {
   Eigen::VectorXd gradient_weights() const override { return problem_.gradient_weights(); }
   Eigen::VectorXd mass() const override { return problem_.free_mass(); }
   void rebase(Eigen::VectorXd* velocity) override { problem_.rebase(velocity); }
+  bool begin_path(const Eigen::VectorXd& p) override {
+    if (!path_) path_.emplace(problem_);
+    path_->start(problem_, p);
+    return true;
+  }
+  Eigen::VectorXd path_point(double alpha) override { return path_->point(problem_, alpha); }
 
   LinkageProblem& problem() { return problem_; }
 
  private:
   LinkageProblem& problem_;
+  std::optional<EdgeRotationPath> path_;  // made at the first begin_path
 };
 
 }  // namespace xshell

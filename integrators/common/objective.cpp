@@ -1,6 +1,12 @@
 #include "integrators/common/objective.hpp"
 
+#include <stdexcept>
+
 namespace xshell {
+
+Eigen::VectorXd Objective::path_point(double) {
+  throw std::logic_error("Objective::path_point without a path (begin_path returned false)");
+}
 
 double gradient_measure(const Objective& objective) {
   const Eigen::VectorXd g = objective.gradient();

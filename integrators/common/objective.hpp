@@ -52,6 +52,18 @@ class Objective {
   // moving it. When velocity is given (size()), it is transformed so that
   // the motion it describes is unchanged.
   virtual void rebase(Eigen::VectorXd* velocity = nullptr) { (void)velocity; }
+
+  // Optionally, a curve that line searches follow instead of the line
+  // q0 + alpha p: it starts at the current configuration q0 with tangent p
+  // (the rod linkage turns its edges, docs/model.md section 9.8).
+  // begin_path(p) at q0 returns whether there is one; path_point(alpha)
+  // then gives its unknowns at alpha, and may move the model (throwing
+  // std::domain_error like set()).
+  virtual bool begin_path(const Eigen::VectorXd& p) {
+    (void)p;
+    return false;
+  }
+  virtual Eigen::VectorXd path_point(double alpha);
 };
 
 }  // namespace xshell

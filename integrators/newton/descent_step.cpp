@@ -25,8 +25,56 @@ DescentStepResult energy_descent_step(ObjectiveEvaluator& evaluator, CholeskySol
     return g.allFinite() &&
            (w.array() * g.array()).matrix().norm() < (w.array() * g0.array()).matrix().norm();
   };
+  if (options.follow_path) energy.path = objective_path(evaluator, q0, p);
   return backtrack_on_energy(evaluator, q0, e0, p, energy, options);
 }
+
+std::function<Eigen::VectorXd(double)> objective_path(ObjectiveEvaluator& evaluator,
+                                                      const Eigen::VectorXd& q0,
+                                                      const Eigen::VectorXd& p) {
+  evaluator.move_to(q0);
+  if (!evaluator.objective().begin_path(p)) return {};
+  return [&evaluator](double alpha) {
+    Eigen::VectorXd q = evaluator.objective().path_point(alpha);
+    evaluator.sync();  // path_point moved the objective
+    return q;
+  };
+}
+
+namespace {
+
+// After the full step was accepted on a path (at phi, the objective there):
+// alpha = 2, 4, ... up to options.max_expansion while phi keeps falling and
+// the Armijo test holds; the objective ends at the best point, recorded in
+// `result`.
+void expand_along_path(ObjectiveEvaluator& evaluator, const BacktrackingMerit& merit, double phi,
+                       const DescentStepOptions& options, DescentStepResult& result) {
+  Eigen::VectorXd best = evaluator.position();
+  bool moved = false;
+  for (double alpha = 2.0; alpha <= options.max_expansion; alpha *= 2.0) {
+    Eigen::VectorXd trial;
+    double energy = 0.0;
+    try {
+      trial = merit.path(alpha);
+      energy = evaluator.energy_at(trial);
+    } catch (const std::domain_error&) {
+      break;
+    }
+    ++result.trials;
+    const double trial_phi = merit.merit ? merit.merit(energy, trial) : energy;
+    if (!std::isfinite(energy) || !(trial_phi < phi) ||
+        !(trial_phi <= merit.phi0 + options.sufficient_decrease * alpha * merit.slope))
+      break;
+    best = std::move(trial);
+    phi = trial_phi;
+    moved = true;
+    result.energy = energy;
+    result.step_fraction = alpha;
+  }
+  if (moved || evaluator.position() != best) evaluator.move_to(best);
+}
+
+}  // namespace
 
 DescentStepResult backtrack_on_energy(ObjectiveEvaluator& evaluator, const Eigen::VectorXd& q0,
                                       double e0, const Eigen::VectorXd& p,
@@ -35,11 +83,12 @@ DescentStepResult backtrack_on_energy(ObjectiveEvaluator& evaluator, const Eigen
   DescentStepResult result;
   double alpha = 1.0;
   for (int k = 0; k <= options.max_backtracks; ++k, alpha *= options.shrink) {
-    const Eigen::VectorXd trial = q0 + alpha * p;
-    if (trial == q0) break;  // the step vanished in round-off
+    if (q0 + alpha * p == q0) break;  // the step vanished in round-off
     ++result.trials;
     double energy = 0.0;
+    Eigen::VectorXd trial;
     try {
+      trial = merit.path ? merit.path(alpha) : Eigen::VectorXd(q0 + alpha * p);
       energy = evaluator.energy_at(trial);
     } catch (const std::domain_error& e) {
       evaluator.record(EvaluationFailure::InvalidConfiguration, e.what());
@@ -53,14 +102,16 @@ DescentStepResult backtrack_on_energy(ObjectiveEvaluator& evaluator, const Eigen
     }
     const double slack = options.energy_noise * std::abs(e0);
     const double phi = merit.merit ? merit.merit(energy, trial) : energy;
+    const bool endgame = std::abs(energy - e0) <= options.endgame_energy_change * std::abs(e0);
     const bool accepted =
         phi <= merit.phi0 + options.sufficient_decrease * alpha * merit.slope + slack ||
-        (k == 0 && std::abs(energy - e0) <= options.endgame_energy_change * std::abs(e0) &&
-         merit.progress && merit.progress());
+        (k == 0 && endgame && merit.progress && merit.progress());
     if (accepted) {
       result.accepted = true;
       result.step_fraction = alpha;
       result.energy = energy;
+      if (k == 0 && merit.path && !endgame)
+        expand_along_path(evaluator, merit, phi, options, result);
       return result;
     }
   }

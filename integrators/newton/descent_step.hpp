@@ -38,6 +38,15 @@ struct DescentStepOptions {
   // scaled gradient norm |diag(w) g|: near a minimum the Newton step is
   // trustworthy and the energy can no longer tell progress.
   double endgame_energy_change = 1e-8;
+  // energy_descent_step: backtrack along the objective's curve when it has
+  // one (Objective::begin_path), not along the line.
+  bool follow_path = true;
+  // On a path, a full step that was accepted is doubled while the merit
+  // keeps falling (with the Armijo test), up to this multiple: Newton's
+  // quadratic model measures curvature along the line, which a curved
+  // valley (a buckled column turning its plane, docs/model.md section 9.8)
+  // has and the path does not, so the Newton step can fall far short.
+  double max_expansion = 64.0;
 };
 
 struct DescentStepResult {
@@ -67,16 +76,29 @@ struct BacktrackingMerit {
   // when it changed the energy by less than endgame_energy_change |E0|:
   // true when the scaled gradient fell, which accepts the step.
   std::function<bool()> progress;
+  // The trial point at alpha, on a curve leaving q0 with tangent p
+  // (Objective::begin_path); empty: q0 + alpha p. May throw
+  // std::domain_error (an invalid trial point).
+  std::function<Eigen::VectorXd(double alpha)> path;
 };
+
+// The objective's curve from q0 along p (Objective::begin_path), as a
+// BacktrackingMerit::path, or an empty function when it has none. Moves the
+// objective to q0.
+std::function<Eigen::VectorXd(double)> objective_path(ObjectiveEvaluator& evaluator,
+                                                      const Eigen::VectorXd& q0,
+                                                      const Eigen::VectorXd& p);
 
 // The one Armijo backtracking of the energy line searches (this step's and
 // the constrained Newton's, constrained_newton.hpp): from q0 (the objective
 // there, energy e0) along p, the largest alpha = shrink^k with
 //   phi(q0 + alpha p) <= phi0 + c1 alpha slope + energy_noise |e0|,
-// or the full step by the end game's test. Trial points that are invalid
-// (set() threw std::domain_error) or of non-finite energy are recorded in
-// the evaluator and skipped. On success the objective is at the new point;
-// otherwise it is back at q0.
+// or the full step by the end game's test; with merit.path, its point at
+// alpha replaces q0 + alpha p (the same slope at alpha = 0), and a full step
+// accepted away from the end game is expanded (max_expansion). Trial points
+// that are invalid (set() or the path threw std::domain_error) or of
+// non-finite energy are recorded in the evaluator and skipped. On success
+// the objective is at the new point; otherwise it is back at q0.
 DescentStepResult backtrack_on_energy(ObjectiveEvaluator& evaluator, const Eigen::VectorXd& q0,
                                       double e0, const Eigen::VectorXd& p,
                                       const BacktrackingMerit& merit,

@@ -13,8 +13,9 @@
 //      through a custom SUNLinearSolver (newton_system.hpp).
 //   3. the step: by default (LineSearch::Energy) the setup hands the
 //      factorization back and the step p = -K^-1 g is backtracked on the
-//      energy (descent_step.hpp); with LineSearch::Kinsol* KINSOL takes it
-//      with its own line search (KIN_LINESEARCH, on 1/2 |diag(w) F|^2).
+//      energy (descent_step.hpp), along the objective's curve when it has
+//      one (the linkage turns its edges: docs/model.md section 9.8); with LineSearch::Kinsol*
+//      KINSOL takes it with its own line search (KIN_LINESEARCH, on 1/2 |diag(w) F|^2).
 // KINSOL's function scaling is the objective's gradient weights w, so that
 // its own stopping test max_i |w_i F_i| <= tolerance is ours; the driver
 // checks the gradient measure before every iteration (a converged start
@@ -83,6 +84,10 @@ struct NewtonOptions {
   double scaled_step_tolerance = 1e-14;
   ShiftOptions shift;  // handling of indefinite Hessians
   LineSearch line_search = LineSearch::Energy;
+  // The energy line search follows the objective's curve (the linkage's
+  // edge-turning path, docs/model.md section 9.8) instead of the line:
+  // large rotations in few iterations. False: the straight line.
+  bool follow_path = true;
   SaddleEscapeOptions escape;  // leaving converged saddles (enabled by default)
 };
 

@@ -96,6 +96,37 @@ TEST_CASE("Cantilever under a tip load: second-order convergence to the elastica
   CHECK(checked == 4);
 }
 
+TEST_CASE("Long strides: the cantilever from straight in a few Newton iterations") {
+  // From straight, the Newton step turns the rod's edges far: along the
+  // line q0 + alpha p that stretches them (by sec(angle) - 1), and the stiff
+  // stretching (E A / E I = 1.3e6 per unit length squared) cuts the steps
+  // short; along the edge-turning path (docs/model.md section 9.8) it does
+  // not. Target: at most 15 iterations at P L^2 / E I = 1 and 10.
+  int checked = 0;
+  for (double alpha : {1.0, 10.0}) {
+    CAPTURE(alpha);
+    int iterations[2] = {0, 0};
+    for (bool follow : {true, false}) {
+      LinkageProblem problem = cantilever_beam(100, Eigen::Vector3d(0, 0, -alpha), kThin);
+      LinkageObjective objective(problem);
+      NewtonOptions options = tight_newton(kTolerance);
+      options.follow_path = follow;
+      const NewtonResult result = solve_newton(objective, options);
+      REQUIRE(result.converged());
+      CHECK(result.stable);
+      const double deflection = -problem.vertex_positions()[1].z();
+      CHECK(std::abs(deflection - cantilever_elastica(alpha).deflection) < 1e-3);
+      iterations[follow ? 0 : 1] = result.iterations;
+    }
+    MESSAGE("P L^2 / E I = " << alpha << ": " << iterations[0] << " Newton iterations along the "
+                             << "path, " << iterations[1] << " along the line");
+    CHECK(iterations[0] <= 15);
+    CHECK(iterations[1] > 2 * iterations[0]);
+    ++checked;
+  }
+  CHECK(checked == 2);
+}
+
 TEST_CASE("Clamped-free column: the Euler load at the clamp's vertex") {
   // E I = 1, L = 1: P_cr = pi^2 / 4.
   const double p_cr = M_PI * M_PI / 4.0;

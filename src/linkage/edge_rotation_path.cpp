@@ -1,0 +1,116 @@
+#include "edge_rotation_path.hpp"
+
+#include <cmath>
+
+namespace xshell {
+
+namespace {
+
+// Edge e moved by de, turned rather than stretched (edge_rotation_path.hpp).
+Eigen::Vector3d turned_edge(const Eigen::Vector3d& e, const Eigen::Vector3d& de) {
+  const double length = e.norm();
+  if (!(length > 0.0)) return e + de;
+  const Eigen::Vector3d t = e / length;
+  const double along = t.dot(de);
+  const Eigen::Vector3d across = de - along * t;
+  const double new_length = length + along;
+  const double across_norm = across.norm();
+  // A step that shortens the edge to nothing or beyond: nothing to turn.
+  if (!(new_length > 0.0) || !(across_norm > 0.0)) return e + de;
+  const double angle = across_norm / length;
+  return new_length * (std::cos(angle) * t + std::sin(angle) * (across / across_norm));
+}
+
+// Spreads the gap left at the end of a run (its nodes first..last, placed
+// by summing edges from node first - 1) along it in proportion to arc length.
+void close_gap(int first, int last, const Eigen::Vector3d& gap, std::vector<Eigen::Vector3d>& nodes,
+               const Eigen::Vector3d& far_end) {
+  double total = (far_end - nodes[last]).norm();
+  for (int i = first; i <= last; ++i) total += (nodes[i] - nodes[i - 1]).norm();
+  if (!(total > 0.0)) return;
+  double run = 0.0;
+  Eigen::Vector3d previous = nodes[first - 1];
+  for (int i = first; i <= last; ++i) {
+    run += (nodes[i] - previous).norm();
+    previous = nodes[i];
+    nodes[i] += (run / total) * gap;
+  }
+}
+
+}  // namespace
+
+EdgeRotationPath::EdgeRotationPath(const LinkageProblem& problem) {
+  const RodLinkage& linkage = problem.linkage();
+  std::vector<int> free_of(linkage.num_dofs(), -1);
+  const std::vector<int>& free = problem.free_indices();
+  for (int k = 0; k < static_cast<int>(free.size()); ++k) free_of[free[k]] = k;
+  node_unknowns_.resize(linkage.num_segments());
+  for (int s = 0; s < linkage.num_segments(); ++s) {
+    const int nodes = linkage.segment(s).num_nodes();
+    node_unknowns_[s].assign(nodes, Eigen::Vector3i::Constant(-1));
+    for (int i = 0; i < nodes; ++i) {
+      Eigen::Vector3i unknowns;
+      for (int c = 0; c < 3; ++c) {
+        const int reduced = linkage.reduced_index(s, 3 * i + c);
+        unknowns[c] = reduced >= 0 ? free_of[reduced] : -1;
+      }
+      if ((unknowns.array() >= 0).all()) node_unknowns_[s][i] = unknowns;
+    }
+  }
+}
+
+void EdgeRotationPath::start(const LinkageProblem& problem, const Eigen::VectorXd& p) {
+  q0_ = problem.free_dofs();
+  p_ = p;
+  const RodLinkage& linkage = problem.linkage();
+  start_nodes_.resize(linkage.num_segments());
+  for (int s = 0; s < linkage.num_segments(); ++s) start_nodes_[s] = linkage.segment(s).nodes();
+}
+
+Eigen::VectorXd EdgeRotationPath::point(LinkageProblem& problem, double alpha) const {
+  Eigen::VectorXd q = q0_ + alpha * p_;
+  problem.set_free_dofs(q);
+  std::vector<Eigen::Vector3d> nodes;
+  for (int s = 0; s < problem.linkage().num_segments(); ++s) {
+    turn_segment(s, problem.linkage().segment(s).nodes(), nodes);
+    for (int i = 0; i < static_cast<int>(nodes.size()); ++i) {
+      const Eigen::Vector3i& unknowns = node_unknowns_[s][i];
+      if (unknowns[0] >= 0)
+        for (int c = 0; c < 3; ++c) q[unknowns[c]] = nodes[i][c];
+    }
+  }
+  return q;
+}
+
+void EdgeRotationPath::turn_segment(int s, const std::vector<Eigen::Vector3d>& straight,
+                                    std::vector<Eigen::Vector3d>& nodes) const {
+  const std::vector<Eigen::Vector3d>& start = start_nodes_[s];
+  const std::vector<Eigen::Vector3i>& unknowns = node_unknowns_[s];
+  const int n = static_cast<int>(straight.size());
+  nodes = straight;
+  auto is_free = [&](int i) { return unknowns[i][0] >= 0; };
+  // Edge i -> i + 1 after the step.
+  auto edge = [&](int i) {
+    return turned_edge(start[i + 1] - start[i],
+                       (straight[i + 1] - straight[i]) - (start[i + 1] - start[i]));
+  };
+  for (int a = 0; a < n; ++a) {
+    if (!is_free(a)) continue;
+    int b = a;
+    while (b + 1 < n && is_free(b + 1)) ++b;
+    const bool left = a > 0, right = b + 1 < n;
+    if (right && !left) {  // summed back from the node after the run
+      for (int i = b; i >= a; --i) nodes[i] = nodes[i + 1] - edge(i);
+    } else {
+      // From the node before the run; with none (no node of the segment is
+      // placed), from the first node where the straight step puts it.
+      const int first = left ? a : a + 1;
+      for (int i = first; i <= b; ++i) nodes[i] = nodes[i - 1] + edge(i - 1);
+      if (right && first <= b)
+        close_gap(first, b, straight[b + 1] - (nodes[b] + edge(b)), nodes, straight[b + 1]);
+    }
+    a = b;
+  }
+}
+
+}  // namespace xshell
