@@ -11,10 +11,22 @@
 // The load factor is the smallest lambda > 0 at which K(lambda) turns
 // singular: with K_0 positive definite,
 //   (K_0 - K_L) phi = nu K_0 phi,  lambda = 1 / nu_max  (nu_max > 0),
-// solved by Lanczos in the K_0 inner product (Spectra's SymGEigsSolver in
-// regular-inverse mode, K_0 applied and inverted with a CHOLMOD LL^T
-// factorization). phi is the buckling mode, K_0-normalized. No positive nu
-// means the loads only stiffen the structure: no buckling load.
+// solved by Lanczos in the K_0 inner product: at a stable loaded state (K_L
+// positive definite), on K_L^-1 K_0 (Spectra's buckling mode with shift 1,
+// K_L factorized with CHOLMOD), whose eigenvalues lambda / (lambda - 1) set
+// the wanted one apart from the unaffected modes (at 1); otherwise on
+// K_0^-1 (K_0 - K_L) (regular-inverse mode, K_0 factorized), where the
+// wanted nu sits next to the unaffected modes (at 0) and Lanczos can need
+// many restarts (manta_ray deployed under gravity: 1000 restarts and 18 s,
+// not converged, against 0.09 s). phi is the buckling mode, K_0-normalized.
+// No lambda > 0 means the loads only stiffen the structure (at a stable
+// loaded state: no lambda > 1): no buckling load.
+// A load factor just above 1 (within ~1e-3) is what the linear
+// interpolation gives when the unloaded equilibrium lies far from the
+// loaded state (large rotations between them: a cantilever bent far, a
+// deployed linkage whose unloaded equilibrium folds back): K(lambda) then
+// turns singular right past the current loads along directions that K_0
+// and K_L merely see rotated, and the estimate says nothing.
 // The estimate is exact for a structure whose pre-buckling deformation is
 // negligible (the Euler column: lambda P = pi^2 E I / (4 L^2) for a
 // clamped-free column, tested) and a first-order estimate otherwise; it is

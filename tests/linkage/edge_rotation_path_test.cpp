@@ -1,13 +1,14 @@
 // The edge-turning path of the Newton line searches (edge_rotation_path.hpp,
 // docs/model.md section 9.8): it leaves q0 with tangent p, moves only free
 // node positions, and turns a run of edges rigidly without stretching it.
+#include "linkage/edge_rotation_path.hpp"
+
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
 
-#include "linkage/edge_rotation_path.hpp"
 #include "linkage/statics_problem.hpp"
 #include "linkage_fixtures.hpp"
 
@@ -109,9 +110,9 @@ TEST_CASE("Along the edge-turning path a cantilever's free part turns rigidly, u
     const Eigen::Matrix3d turn = Eigen::AngleAxisd(alpha, w).toRotationMatrix();
     double error = 0.0;
     for (int i = 2; i < n; ++i)  // the free nodes
-      error = std::max(error, (linkage.segment(0).nodes()[i] -
-                               (start[1] + turn * (start[i] - start[1])))
-                                  .lpNorm<Eigen::Infinity>());
+      error = std::max(error,
+                       (linkage.segment(0).nodes()[i] - (start[1] + turn * (start[i] - start[1])))
+                           .lpNorm<Eigen::Infinity>());
     CHECK(error < 1e-12);
     const double turned = problem.energy().stretching;
     problem.set_free_dofs(q0 + alpha * p);
