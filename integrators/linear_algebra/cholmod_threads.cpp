@@ -1,5 +1,6 @@
 #include "integrators/linear_algebra/cholmod_threads.hpp"
 
+#include <dlfcn.h>
 #include <omp.h>
 
 #include <mutex>
@@ -14,6 +15,10 @@ namespace {
 std::mutex guard_mutex;
 int holders = 0;
 int saved_levels = 0;
+
+// Whether this thread holds a serial guard: its parallel regions then run
+// as plain calls (see GOMP_parallel below).
+thread_local bool serial_here = false;
 
 }  // namespace
 
@@ -30,10 +35,12 @@ CholmodThreads::CholmodThreads() {
     omp_set_max_active_levels(0);
   }
   serial_ = true;
+  serial_here = true;
 }
 
 CholmodThreads::~CholmodThreads() {
   if (!serial_) return;
+  serial_here = false;
   {
     std::lock_guard<std::mutex> lock(guard_mutex);
     if (--holders == 0) omp_set_max_active_levels(saved_levels);
@@ -42,3 +49,26 @@ CholmodThreads::~CholmodThreads() {
 }
 
 }  // namespace xshell
+
+// libgomp's entry to a parallel region, which CHOLMOD calls once per
+// supernode and loop (thousands of times per factorization). An inactive
+// region still builds a team of one and ends it with a futex wake-up system
+// call (about 1.2 us on this machine kind): 1.3 million of them, 1.5 s of
+// system time, in a 4 s deployment of manta_ray. While this thread holds a
+// serial guard the region's body is called directly: outside any team
+// omp_get_num_threads() is 1 and omp_get_thread_num() 0, which is all that
+// CHOLMOD's regions ask (its library imports nothing else from libgomp).
+// Otherwise libgomp's own entry runs. The definition here takes the place
+// of libgomp's for the program and the libraries it loads (the dynamic
+// linker looks in the executable first); a library loaded into another
+// program (the Python module) keeps libgomp's.
+extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned num_threads,
+                              unsigned flags) {
+  using Entry = void (*)(void (*)(void*), void*, unsigned, unsigned);
+  static const Entry next = reinterpret_cast<Entry>(dlsym(RTLD_NEXT, "GOMP_parallel"));
+  if (xshell::serial_here || next == nullptr) {
+    fn(data);
+    return;
+  }
+  next(fn, data, num_threads, flags);
+}

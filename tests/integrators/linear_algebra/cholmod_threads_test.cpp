@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <random>
+#include <thread>
 
 #include "integrators/linear_algebra/cholesky_solver.hpp"
 
@@ -55,6 +56,33 @@ TEST_CASE("A CHOLMOD call runs on one thread when the program allows fewer than 
   }
   CHECK(omp_get_max_active_levels() == levels);
   CHECK(omp_get_max_threads() == 2);
+}
+
+// Nesting level inside a parallel region opened here (0: no team was made).
+int region_level() {
+  int level = -1;
+#pragma omp parallel num_threads(kCholmodTeamSize)
+  {
+#pragma omp single
+    level = omp_get_level();
+  }
+  return level;
+}
+
+TEST_CASE("Under a serial guard a parallel region is a plain call, on this thread only") {
+  // CHOLMOD opens thousands of regions per factorization; an inactive one
+  // still builds a team and ends it with a system call.
+  const ThreadCount two(2);
+  CHECK(region_level() == 1);  // elsewhere libgomp makes the team
+  {
+    const CholmodThreads threads;
+    REQUIRE(threads.serial());
+    CHECK(region_level() == 0);
+    int other_thread_level = -1;
+    std::thread([&] { other_thread_level = region_level(); }).join();
+    CHECK(other_thread_level == 1);  // another thread's regions are its own
+  }
+  CHECK(region_level() == 1);
 }
 
 TEST_CASE("With as many threads as CHOLMOD's teams, a CHOLMOD call is left alone") {
