@@ -62,8 +62,7 @@ CholmodThreads::~CholmodThreads() {
 // of libgomp's for the program and the libraries it loads (the dynamic
 // linker looks in the executable first); a library loaded into another
 // program (the Python module) keeps libgomp's.
-extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned num_threads,
-                              unsigned flags) {
+extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned num_threads, unsigned flags) {
   using Entry = void (*)(void (*)(void*), void*, unsigned, unsigned);
   static const Entry next = reinterpret_cast<Entry>(dlsym(RTLD_NEXT, "GOMP_parallel"));
   if (xshell::serial_here || next == nullptr) {
