@@ -53,6 +53,7 @@ DeploymentOptions deployment_options(const Config& config) {
 DeploymentPlan make_plan(const Deployment& d, const LinkageProblem& problem) {
   DeploymentPlan plan;
   plan.steps = d.steps;
+  plan.largest_step = d.largest_step;
   if (d.target == DeploymentTarget::AverageOpeningAngle) {
     plan.average_angle = d.average_opening_angle;
   } else {

@@ -277,7 +277,7 @@ AnalysisOptions read_analysis(const JsonField& f) {
 }
 
 Deployment read_deployment(const JsonField& f) {
-  f.check_keys({"average_opening_angle", "joint_angles", "steps"});
+  f.check_keys({"average_opening_angle", "joint_angles", "steps", "largest_step"});
   Deployment d;
   const auto average = f.find("average_opening_angle");
   const auto joints = f.find("joint_angles");
@@ -302,6 +302,7 @@ Deployment read_deployment(const JsonField& f) {
     if (d.joint_angles.empty()) joints->fail("must list at least one joint");
   }
   if (auto steps = f.find("steps")) d.steps = at_least(*steps, 1);
+  if (auto largest = f.find("largest_step")) d.largest_step = positive(*largest);
   return d;
 }
 
@@ -505,6 +506,7 @@ nlohmann::json to_json(const Config& c) {
   if (!c.units.force.empty()) j["units"]["force"] = c.units.force;
   if (const auto& d = c.deployment) {
     nlohmann::json deployment = {{"steps", d->steps}};
+    if (d->largest_step > 0.0) deployment["largest_step"] = d->largest_step;
     if (d->target == DeploymentTarget::AverageOpeningAngle) {
       deployment["average_opening_angle"] = d->average_opening_angle;
     } else {

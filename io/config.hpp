@@ -250,6 +250,10 @@ struct Deployment {
   double average_opening_angle = 0;      // "average_opening_angle", in (0, pi); radians
   std::vector<JointAngle> joint_angles;  // "joint_angles": non-empty, one entry per vertex
   int steps = 20;                        // "steps", >= 1, default 20
+  // "largest_step", > 0, radians, optional: adaptive increments that grow
+  // from 1 / steps of the way up to this change of the actuated angle
+  // (DeploymentPlan::largest_step); absent: `steps` equal increments.
+  double largest_step = 0;
 };
 
 // "design.weights": the objective's terms, each >= 0, at least one > 0.

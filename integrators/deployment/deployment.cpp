@@ -16,6 +16,7 @@
 #include "integrators/deployment/constrained_newton.hpp"
 #include "integrators/deployment/constrained_objective.hpp"
 #include "integrators/deployment/path_predictor.hpp"
+#include "integrators/deployment/step_control.hpp"
 #include "integrators/stability/branch_bias.hpp"
 #include "linkage/frame_free_unknowns.hpp"
 #include "linkage/opening_angle_range.hpp"
@@ -92,23 +93,19 @@ class Deployer {
     // Step 0: equilibrium at the start's own value.
     if (!advance(0.0, 0, 0)) return finish(start);
 
-    const double nominal = 1.0 / plan_.steps;
-    double s = 0.0, increment = nominal;
-    int grid = 0;  // s lies on or past the grid point grid / steps
+    StepControl control(plan_.steps, largest_increment());
     int step = 0, halvings = 0;
     double failed_seconds = 0.0;
-    while (grid < plan_.steps) {
-      const double next_grid = grid + 1 == plan_.steps ? 1.0 : (grid + 1) * nominal;
-      const bool to_grid = s + increment >= next_grid * (1.0 - 1e-12);
-      const double target = to_grid ? next_grid : s + increment;
+    while (!control.done()) {
+      const double target = control.next();
       const Clock::time_point attempt_start = Clock::now();
       if (advance(target, step + 1, halvings, failed_seconds)) {
-        s = target;
-        if (to_grid) ++grid;
         ++step;
         halvings = 0;
         failed_seconds = 0.0;
-        increment = std::min(2.0 * increment, nominal);
+        const DeploymentStep& row = result_.steps.back();
+        control.accepted(row.iterations,
+                         row.saddles_escaped > 0 || result_.branch_switch_step == step);
         continue;
       }
       if (result_.status == SolveStatus::Interrupted) break;
@@ -122,9 +119,9 @@ class Deployer {
       }
       ++halvings;
       failed_seconds += seconds_since(attempt_start);
-      increment = 0.5 * (target - s);
+      control.failed();
     }
-    if (grid == plan_.steps) {
+    if (control.done()) {
       result_.status = SolveStatus::Converged;
       result_.reason = "reached the target in " + std::to_string(step) + " steps";
     }
@@ -132,6 +129,18 @@ class Deployer {
   }
 
  private:
+  // DeploymentPlan::largest_step as an increment of s (0: none).
+  double largest_increment() const {
+    if (!(plan_.largest_step > 0.0)) return 0.0;
+    double span = std::abs(plan_.average_angle - start_average_);
+    if (!constraint_) {
+      span = 0.0;
+      for (size_t k = 0; k < start_angles_.size(); ++k)
+        span = std::max(span, std::abs(plan_.joint_angles[k].angle - start_angles_[k]));
+    }
+    return span > 0.0 ? plan_.largest_step / span : 0.0;
+  }
+
   double average_target(double s) const {
     if (!constraint_) return average_opening_angle(problem_.linkage());
     return start_average_ + s * (plan_.average_angle - start_average_);

@@ -23,18 +23,18 @@
 //    fast each joint is driven).
 //
 // Continuation: the path parameter s runs from 0 (the start) to 1 (the
-// target) in `steps` equal increments. Step 0 solves at the start's own
-// value. A step whose solve fails, or whose first attempt takes more than
-// step_iterations Newton iterations, is undone (the problem is restored to the
-// last accepted state) and retried with half the increment, at most
-// max_halvings times in a row; after a success the increment doubles back
-// up to the nominal one, and steps always land on the nominal grid
-// s = k / steps. Every step's solve checks the stability of its equilibrium
-// (on the constraint's tangent space under the average actuation) and, by
-// default, leaves a saddle downhill along negative curvature on the side of
-// buckling_direction, so the continuation follows the stable branch through
-// a bifurcation (a flat linkage popping out of its plane). With the escape
-// off (newton.escape.enabled, dynamics.escape.enabled) saddles are accepted
+// target) in `steps` equal increments, or in adaptive ones
+// (DeploymentPlan::largest_step; step_control.hpp). Step 0 solves at the
+// start's own value. A step whose solve fails, or whose first attempt takes
+// more than step_iterations Newton iterations, is undone (the problem is
+// restored to the last accepted state) and retried with half the increment,
+// at most max_halvings times in a row; after a success the increment
+// doubles back up to the nominal one, and with equal increments steps
+// always land on the nominal grid s = k / steps. Every step's solve checks the stability of its
+// equilibrium (on the constraint's tangent space under the average actuation) and, by default,
+// leaves a saddle downhill along negative curvature on the side of buckling_direction, so the
+// continuation follows the stable branch through a bifurcation (a flat linkage popping out of its
+// plane). With the escape off (newton.escape.enabled, dynamics.escape.enabled) saddles are accepted
 // and reported as unstable steps.
 #pragma once
 
@@ -89,6 +89,12 @@ struct DeploymentPlan {
   std::vector<PrescribedAngle> joint_angles;
   double average_angle = 0.0;
   int steps = 20;  // nominal number of increments (>= 1)
+  // Adaptive increments (step_control.hpp) when > 0: the largest increment
+  // of the actuated angle (radians; of the average, or of the prescribed
+  // angle that moves most), reached by doubling 1 / steps of the way after
+  // every step that converged in at most two iterations; the number of
+  // steps then follows. 0: `steps` equal increments.
+  double largest_step = 0.0;
 };
 
 struct DeploymentOptions {

@@ -35,7 +35,7 @@ const json kFull = json::parse(R"({
   "output": {"directory": "/tmp/results", "every": 5, "format": "ascii", "solids": true,
              "progress": false},
   "deployment": {"joint_angles": [{"vertex": 2, "angle": 1.5}, {"vertex": 3, "angle": 2}],
-                 "steps": 7}
+                 "steps": 7, "largest_step": 0.3}
 })");
 
 }  // namespace
@@ -131,12 +131,14 @@ TEST_CASE("config: every key is read") {
   CHECK(c.deployment->joint_angles[1].vertex == 3);
   CHECK(c.deployment->joint_angles[1].angle == 2);
   CHECK(c.deployment->steps == 7);
+  CHECK(c.deployment->largest_step == 0.3);
 
   const Config average = parse(with("/deployment", {{"average_opening_angle", 1.2}}));
   REQUIRE(average.deployment.has_value());
   CHECK(average.deployment->target == DeploymentTarget::AverageOpeningAngle);
   CHECK(average.deployment->average_opening_angle == 1.2);
   CHECK(average.deployment->steps == 20);
+  CHECK(average.deployment->largest_step == 0);  // equal increments
   CHECK(parse(with("/solver/damping", "auto")).solver.damping == std::nullopt);
   CHECK(parse(with("/subdivisions", 3.0)).subdivisions == 3);  // an integral number
 }
@@ -311,12 +313,15 @@ TEST_CASE("config: out-of-range values are rejected") {
       {"/deployment",
        {{"average_opening_angle", 1}, {"steps", 0}},
        "deployment.steps: must be >= 1"},
+      {"/deployment",
+       {{"average_opening_angle", 1}, {"largest_step", 0}},
+       "deployment.largest_step: must be > 0, got 0"},
   };
   for (const Case& c : cases) {
     INFO(c.pointer << " = " << c.value.dump());
     check_message(rejection(with(c.pointer, c.value)), {"c.json: " + c.expected});
   }
-  CHECK(cases.size() == 21);
+  CHECK(cases.size() == 22);
 }
 
 TEST_CASE("config: infinite numbers are rejected") {

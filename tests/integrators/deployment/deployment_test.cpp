@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -331,6 +332,45 @@ TEST_CASE("Each predictor lands on the same path and the curved one needs the fe
   // The same equilibria: the vertices (the unknowns' thetas and omegas
   // depend on where the solvers rebased).
   for (const Eigen::VectorXd& end : ends) CHECK((end - ends[0]).cwiseAbs().maxCoeff() <= 1e-9);
+}
+
+}  // namespace xshell::test
+
+namespace xshell::test {
+
+TEST_CASE("Adaptive increments reach the same end in fewer steps, the torque on the same curve") {
+  LinkageProblem equal = dome_problem(5);
+  const double start = average_opening_angle(equal.linkage());
+  const DeploymentOptions options = tight(DeploymentSolver::Newton, 1e-9);
+  const DeploymentResult fixed = run(equal, average_plan(start + 0.6, 48), options);
+  LinkageProblem adaptive = dome_problem(5);
+  DeploymentPlan plan = average_plan(start + 0.6, 48);
+  plan.largest_step = 0.2;
+  const DeploymentResult grown = run(adaptive, plan, options);
+  MESSAGE("steps: equal " << fixed.steps.size() - 1 << ", adaptive " << grown.steps.size() - 1
+                          << "; iterations " << fixed.iterations << ", " << grown.iterations);
+  CHECK(grown.steps.size() < fixed.steps.size());
+  CHECK(grown.steps.back().average_angle == doctest::Approx(start + 0.6).epsilon(1e-9));
+  double largest = 0.0;
+  for (size_t k = 1; k < grown.steps.size(); ++k)
+    largest = std::max(largest, grown.steps[k].average_angle - grown.steps[k - 1].average_angle);
+  CHECK(largest <= 0.2 + 1e-9);
+  CHECK(largest > 0.6 / 48 * 1.5);  // it grew
+  for (int v = 0; v < static_cast<int>(equal.linkage().graph().vertices.size()); ++v)
+    CHECK((equal.linkage().vertex_position(v) - adaptive.linkage().vertex_position(v)).norm() <=
+          1e-8);
+  // Each adaptive step's torque lies on the equal steps' torque curve
+  // (linear interpolation between its neighbours there, the curve's
+  // second difference bounding the error).
+  for (size_t k = 1; k + 1 < grown.steps.size(); ++k) {
+    const DeploymentStep& g = grown.steps[k];
+    size_t j = 1;
+    while (j + 1 < fixed.steps.size() && fixed.steps[j].average_angle < g.average_angle) ++j;
+    const DeploymentStep &a = fixed.steps[j - 1], &b = fixed.steps[j];
+    const double w = (g.average_angle - a.average_angle) / (b.average_angle - a.average_angle);
+    CAPTURE(k);
+    CHECK(g.torque == doctest::Approx((1 - w) * a.torque + w * b.torque).epsilon(1e-3));
+  }
 }
 
 }  // namespace xshell::test
