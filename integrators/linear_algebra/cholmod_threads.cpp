@@ -16,9 +16,9 @@ std::mutex guard_mutex;
 int holders = 0;
 int saved_levels = 0;
 
-// Whether this thread holds a serial guard: its parallel regions then run
-// as plain calls (see GOMP_parallel below).
-thread_local bool serial_here = false;
+// Serial guards this thread holds (nested ones included): while there is
+// one its parallel regions run as plain calls (see GOMP_parallel below).
+thread_local int serial_here = 0;
 
 }  // namespace
 
@@ -35,12 +35,12 @@ CholmodThreads::CholmodThreads() {
     omp_set_max_active_levels(0);
   }
   serial_ = true;
-  serial_here = true;
+  ++serial_here;
 }
 
 CholmodThreads::~CholmodThreads() {
   if (!serial_) return;
-  serial_here = false;
+  --serial_here;
   {
     std::lock_guard<std::mutex> lock(guard_mutex);
     if (--holders == 0) omp_set_max_active_levels(saved_levels);
@@ -57,11 +57,12 @@ CholmodThreads::~CholmodThreads() {
 // system time, in a 4 s deployment of manta_ray. While this thread holds a
 // serial guard the region's body is called directly: outside any team
 // omp_get_num_threads() is 1 and omp_get_thread_num() 0, which is all that
-// CHOLMOD's regions ask (its library imports nothing else from libgomp).
-// Otherwise libgomp's own entry runs. The definition here takes the place
-// of libgomp's for the program and the libraries it loads (the dynamic
-// linker looks in the executable first); a library loaded into another
-// program (the Python module) keeps libgomp's.
+// CHOLMOD's regions ask (its library imports nothing else from libgomp;
+// the BLAS, told one thread, opens none). Otherwise libgomp's own entry
+// runs. The definition here takes the place of libgomp's for the program
+// and the libraries it loads (the dynamic linker looks in the executable
+// first); in the Python module, loaded into another program, CHOLMOD may
+// bind to either, and both are correct.
 extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned num_threads, unsigned flags) {
   using Entry = void (*)(void (*)(void*), void*, unsigned, unsigned);
   static const Entry next = reinterpret_cast<Entry>(dlsym(RTLD_NEXT, "GOMP_parallel"));

@@ -16,7 +16,12 @@
 // active levels 0, and the thread count 1 for the BLAS, which sizes its
 // teams by it); with enough threads it changes nothing. On 2 cores the
 // BLAS gained nothing from a second thread on these factorizations
-// (largest design 110 ms on one thread, 104 ms on two).
+// (largest design 110 ms on one thread, 104 ms on two). While a serial
+// guard is held, the regions opened on its thread are plain calls that
+// make no team at all (cholmod_threads.cpp, GOMP_parallel): an inactive
+// region still costs a system call, and CHOLMOD opens thousands per
+// factorization (manta_ray's 7-11 ms became 2.0 ms, the largest design's
+// 85-105 ms 29 ms).
 #pragma once
 
 namespace xshell {

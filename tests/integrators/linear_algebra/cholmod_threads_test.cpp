@@ -81,6 +81,11 @@ TEST_CASE("Under a serial guard a parallel region is a plain call, on this threa
     int other_thread_level = -1;
     std::thread([&] { other_thread_level = region_level(); }).join();
     CHECK(other_thread_level == 1);  // another thread's regions are its own
+    {
+      const CholmodThreads nested;
+      CHECK(region_level() == 0);
+    }
+    CHECK(region_level() == 0);  // the outer guard still holds
   }
   CHECK(region_level() == 1);
 }
