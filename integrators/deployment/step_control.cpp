@@ -20,15 +20,16 @@ StepControl::StepControl(int steps, double largest)
 
 bool StepControl::done() const { return adaptive() ? s_ >= 1.0 : grid_ >= steps_; }
 
+double StepControl::next_grid() const { return grid_ + 1 == steps_ ? 1.0 : (grid_ + 1) * nominal_; }
+
 double StepControl::next() const {
   if (adaptive()) return s_ + increment_ >= 1.0 - kSnap ? 1.0 : s_ + increment_;
-  const double next_grid = grid_ + 1 == steps_ ? 1.0 : (grid_ + 1) * nominal_;
-  return s_ + increment_ >= next_grid * (1.0 - kSnap) ? next_grid : s_ + increment_;
+  return s_ + increment_ >= next_grid() * (1.0 - kSnap) ? next_grid() : s_ + increment_;
 }
 
 void StepControl::accepted(long iterations, bool jumped) {
   const double target = next();
-  if (!adaptive() && target == (grid_ + 1 == steps_ ? 1.0 : (grid_ + 1) * nominal_)) ++grid_;
+  if (!adaptive() && target == next_grid()) ++grid_;
   s_ = target;
   const bool easy = iterations <= kEasyIterations && !jumped;
   if (adaptive() && (iterations > kHardIterations || jumped))

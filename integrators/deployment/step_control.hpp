@@ -30,7 +30,6 @@ class StepControl {
   StepControl(int steps, double largest);
 
   bool done() const;
-  double s() const { return s_; }
   // The value of s that the next attempt solves at.
   double next() const;
   // The attempt at next() was accepted after `iterations` solver
@@ -41,6 +40,8 @@ class StepControl {
 
  private:
   bool adaptive() const { return largest_ > 0.0; }
+  // Fixed increments: the grid point after grid_ (1 exactly at the end).
+  double next_grid() const;
   int steps_;
   double nominal_, largest_;
   double s_ = 0.0, increment_;
