@@ -4,14 +4,20 @@
 // sections twist) rather than as centerlines.
 //
 // Layout, per rod with nodes 0..n and an outline of m points:
-//   points   (n + 1) m ring points (ring k around node k), then the centres
-//            of the first and last sections; then duplicated where the
-//            surface has a crease (section corners, the caps) so that flat
-//            faces shade flat (vtkPolyDataNormals splitting).
+//   points   a ring of c points around every node (node k's ring is the rod's
+//            points k c .. k c + c - 1): the outline's points, a corner sharper than
+//            the crease angle twice (once per side it bounds, with that
+//            side's normal) so that flat faces shade flat, so c = 2m for a
+//            rectangle and c = m for a smooth ellipse; then each cap's m
+//            outline points and its centre (first section, then last), with
+//            the cap's normal.
 //   cells    2 n m side triangles and 2 m cap triangles (fans), all
 //            oriented outward.
 //   cell data   rod_id            int
-//   point data  Normals           3 x double, unit, outward
+//   point data  Normals           3 x double, unit, outward (computed from
+//                                 the section and the node frame: a side's
+//                                 normal, the mean of two sides' at a smooth
+//                                 corner, +-t on the caps)
 //               curvature, twist, bending_density, twisting_density
 //                                 double, copied from the section's node, so
 //                                 the solids colour like the rods file.

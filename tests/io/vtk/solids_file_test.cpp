@@ -27,7 +27,7 @@ Eigen::Vector3d point(vtkPolyData& data, vtkIdType id) {
 }
 
 // Closed and consistently oriented: after merging coincident points (the
-// normals filter duplicates points at creases), every directed edge of a
+// file duplicates points at creases and caps), every directed edge of a
 // triangle appears exactly once and its reverse exactly once. Returns the
 // number of directed edges checked.
 int check_closed_and_oriented(vtkPolyData& data) {
@@ -144,6 +144,56 @@ TEST_CASE("solids file: a straight rod is an exact prism with outward normals") 
     ++checked_cases;
   }
   CHECK(checked_cases == 2);
+}
+
+// The largest angle (radians) between a triangle's face normal and the
+// point normals of its corners, over all triangles.
+double largest_normal_deviation(vtkPolyData& data) {
+  vtkDataArray* normals = data.GetPointData()->GetArray("Normals");
+  REQUIRE(normals);
+  double largest = 0.0;
+  vtkNew<vtkIdList> cell;
+  for (vtkIdType c = 0; c < data.GetNumberOfCells(); ++c) {
+    data.GetCellPoints(c, cell);
+    const Eigen::Vector3d a = point(data, cell->GetId(0)), b = point(data, cell->GetId(1)),
+                          d = point(data, cell->GetId(2));
+    const Eigen::Vector3d face = (b - a).cross(d - a).normalized();
+    for (vtkIdType j = 0; j < 3; ++j) {
+      const Eigen::Vector3d n = tuple3(*normals, cell->GetId(j));
+      largest = std::max(largest, std::atan2(n.cross(face).norm(), n.dot(face)));
+    }
+  }
+  return largest;
+}
+
+TEST_CASE("solids file: flat faces shade flat and smooth sections smoothly") {
+  const Eigen::Vector3d start(0.2, -0.1, 0.4), end(1.1, 0.5, 0.1);
+  const int sides = 12;
+  {
+    // Every corner of a rectangle is a crease: each face's corners carry its
+    // own normal (8 ring points per node, 4 + 1 per cap).
+    ScratchDir dir("flat");
+    const auto path = dir.path() / "solids.vtp";
+    write_solids_file(
+        straight_rod_snapshot({SectionSnapshot::Shape::Rectangle, 0.05, 0.02}, start, end, 5), path,
+        {}, {sides, 60.0});
+    const auto data = read_polydata(path);
+    CHECK(data->GetNumberOfPoints() == 6 * 8 + 2 * 5);
+    CHECK(largest_normal_deviation(*data) < 1e-9);
+  }
+  {
+    // A 12-gon turns by 30 degrees at each corner, under the crease angle:
+    // one point per corner with the mean of its two sides' normals, 15
+    // degrees from each; the caps are flat.
+    ScratchDir dir("smooth");
+    const auto path = dir.path() / "solids.vtp";
+    write_solids_file(
+        straight_rod_snapshot({SectionSnapshot::Shape::Ellipse, 0.04, 0.04}, start, end, 5), path,
+        {}, {sides, 60.0});
+    const auto data = read_polydata(path);
+    CHECK(data->GetNumberOfPoints() == 6 * sides + 2 * (sides + 1));
+    CHECK(largest_normal_deviation(*data) == doctest::Approx(kPi / sides).epsilon(1e-9));
+  }
 }
 
 TEST_CASE("solids file: a section without width is rejected") {
