@@ -1,4 +1,4 @@
-// A loop over [0, count) inside an OpenMP parallel region that gives every
+// A loop over [0, count) inside a parallel run (thread_team.hpp) that gives every
 // thread the same consecutive range at every call, as a static schedule
 // does, and lets a thread that has finished its own range take what is left
 // of the others' (work stealing).
@@ -19,10 +19,6 @@
 #include <atomic>
 #include <memory>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 namespace xshell {
 
 class AffineLoop {
@@ -38,14 +34,9 @@ class AffineLoop {
   AffineLoop(AffineLoop&&) noexcept = default;
   AffineLoop& operator=(AffineLoop&&) noexcept = default;
 
-  // Sets the ranges for `count` items over the calling team: call from one
-  // thread (an `omp single`), with a barrier before any thread runs it.
-  void reset(int count) {
-#ifdef _OPENMP
-    const int threads = omp_get_num_threads();
-#else
-    const int threads = 1;
-#endif
+  // Sets the ranges for `count` items over a team of `threads`: call from
+  // one member, with a barrier before any member runs it.
+  void reset(int count, int threads) {
     if (threads != threads_) {
       cursors_ = std::make_unique<Cursor[]>(threads);
       threads_ = threads;
@@ -58,15 +49,10 @@ class AffineLoop {
   }
 
   // f(i) for every item, each exactly once over the team, in chunks of
-  // `chunk` items: every thread runs this, its own range first, then what
-  // is left of the next threads' ranges. No barrier at the end.
+  // `chunk` items: every member `self` runs this, its own range first, then
+  // what is left of the next members' ranges. No barrier at the end.
   template <class F>
-  void run(int chunk, F&& f) {
-#ifdef _OPENMP
-    const int self = omp_get_thread_num();
-#else
-    const int self = 0;
-#endif
+  void run(int self, int chunk, F&& f) {
     for (int k = 0; k < threads_; ++k) {
       Cursor& c = cursors_[(self + k) % threads_];
       for (;;) {

@@ -5,36 +5,15 @@
 #include <stdexcept>
 
 #include "segment_parallel.hpp"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "thread_team.hpp"
 
 namespace xshell {
 
 namespace {
 
-// Threads of the next parallel region.
-int thread_count() {
-#ifdef _OPENMP
-  return omp_get_max_threads();
-#else
-  return 1;
-#endif
-}
-
 // Joints are taken by pairs: one costs about a microsecond, a segment
 // several.
 constexpr int kJointChunk = 2;
-
-// This thread's index in its parallel region.
-int thread_index() {
-#ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
-}
 
 // Index of a segment's terminal edge at one end.
 int terminal_edge_index(const ElasticRod& rod, int side) {
@@ -55,24 +34,22 @@ void LinkageAssembly::store_gradient(const SegmentPlan& plan, const double* loca
 }
 
 template <class JointWork, class SegmentWork>
-void LinkageAssembly::joints_then_segments(int num_joints, int num_segments, JointWork&& joint_work,
-                                           SegmentWork&& segment_work) {
-#pragma omp single
-  {
-    joint_loop_.reset(num_joints);
-    segment_loop_.reset(num_segments);
+void LinkageAssembly::joints_then_segments(int self, int members, int num_joints, int num_segments,
+                                           JointWork&& joint_work, SegmentWork&& segment_work) {
+  if (self == 0) {
+    joint_loop_.reset(num_joints, members);
+    segment_loop_.reset(num_segments, members);
   }
-  joint_loop_.run(kJointChunk, joint_work);
-#pragma omp barrier
-  segment_loop_.run(1, segment_work);
-#pragma omp barrier
+  ThreadTeam::barrier();
+  joint_loop_.run(self, kJointChunk, joint_work);
+  ThreadTeam::barrier();
+  segment_loop_.run(self, 1, segment_work);
+  ThreadTeam::barrier();
 }
 
-LinkageAssembly::Scratch& LinkageAssembly::scratch_for_thread() { return scratch_[thread_index()]; }
-
 void LinkageAssembly::prepare_scratch() {
-  if (static_cast<int>(scratch_.size()) >= thread_count()) return;
-  scratch_.resize(thread_count());
+  if (static_cast<int>(scratch_.size()) >= assembly_threads()) return;
+  scratch_.resize(assembly_threads());
   for (Scratch& w : scratch_) {
     w.rod_gradient.resize(max_rod_dofs_);
     w.rod_hessian.resize(static_cast<size_t>(max_rod_dofs_) * max_rod_dofs_);
@@ -195,26 +172,26 @@ void LinkageAssembly::gradient(const RodLinkage& linkage,
   out.resize(num_dofs_);
   const int nj = linkage.num_joints();
   joint_geometry_.resize(nj);
-  // One parallel region per evaluation (its fork and barriers are the
-  // overhead); small linkages stay serial. Joints and segments go to the
+  // One parallel run per evaluation (waking the team and its barriers are
+  // the overhead); small linkages stay serial. Joints and segments go to the
   // threads in the same ranges at every call (affine_loop.hpp).
-#pragma omp parallel if (ns >= kMinParallelSegments)
-  {
+  const int threads = ns >= kMinParallelSegments ? assembly_threads() : 1;
+  ThreadTeam::shared().run(threads, [&](int self, int members) {
     joints_then_segments(
-        nj, ns, [&](int j) { joint_geometry_jacobian(linkage.joint(j), joint_geometry_[j]); },
+        self, members, nj, ns,
+        [&](int j) { joint_geometry_jacobian(linkage.joint(j), joint_geometry_[j]); },
         [&](int s) {
-          Scratch& w = scratch_for_thread();
+          Scratch& w = scratch_[self];
           local_derivatives(linkage, s, forces, false, w);
           store_gradient(plans_[s], w.local_gradient.data(), out.data());
         });
-    sum_gradient(out);
-  }
+    sum_gradient(out, self, members);
+  });
 }
 
-void LinkageAssembly::sum_gradient(Eigen::VectorXd& out) const {
-  const long shared = static_cast<long>(shared_dofs_.size());
-#pragma omp for schedule(static)
-  for (long k = 0; k < shared; ++k) {
+void LinkageAssembly::sum_gradient(Eigen::VectorXd& out, int self, int members) const {
+  const MemberRange range = member_range(static_cast<long>(shared_dofs_.size()), self, members);
+  for (long k = range.first; k < range.last; ++k) {
     double sum = 0.0;
     for (long i = gradient_sources_begin_[k]; i < gradient_sources_begin_[k + 1]; ++i)
       sum += gradient_contributions_[gradient_sources_[i]];
@@ -249,12 +226,13 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
   const int nj = linkage.num_joints();
   joint_geometry_.resize(nj);
   const int ns = static_cast<int>(plans_.size());
-#pragma omp parallel if (ns >= kMinParallelSegments)
-  {
+  const int threads = ns >= kMinParallelSegments ? assembly_threads() : 1;
+  ThreadTeam::shared().run(threads, [&](int self, int members) {
     joints_then_segments(
-        nj, ns, [&](int j) { joint_geometry_derivatives(linkage.joint(j), joint_geometry_[j]); },
+        self, members, nj, ns,
+        [&](int j) { joint_geometry_derivatives(linkage.joint(j), joint_geometry_[j]); },
         [&](int s) {
-          Scratch& w = scratch_for_thread();
+          Scratch& w = scratch_[self];
           local_derivatives(linkage, s, forces, true, w);
           const SegmentPlan& plan = plans_[s];
           const double* local = w.local_hessian.data();  // column-major, plan.size() square
@@ -262,15 +240,15 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
           copy_runs(plan.direct_runs, local, values);
           if (gradient) store_gradient(plan, w.local_gradient.data(), gradient->data());
         });
-#pragma omp for schedule(static)
-    for (long k = 0; k < shared; ++k) {
+    const MemberRange range = member_range(shared, self, members);
+    for (long k = range.first; k < range.last; ++k) {
       double sum = 0.0;
       for (long i = hessian_sources_begin_[k]; i < hessian_sources_begin_[k + 1]; ++i)
         sum += hessian_contributions_[hessian_sources_[i]];
       values[shared_slots_[k]] = sum;
     }
-    if (gradient) sum_gradient(*gradient);
-  }
+    if (gradient) sum_gradient(*gradient, self, members);
+  });
 }
 
 }  // namespace xshell

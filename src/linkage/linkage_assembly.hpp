@@ -16,7 +16,7 @@
 // nonzero, fixed unknowns dropped), and for every local entry the value slot
 // it adds to. Each evaluation then
 //   1. computes every segment's local gradient / Hessian in parallel
-//      (OpenMP, per-thread scratch: no allocation), writing the entries no
+//      (thread_team.hpp, per-thread scratch: no allocation), writing the entries no
 //      other segment adds to straight to their places, and the others into
 //      its own range of a contribution buffer, and
 //   2. sums the contributions of every shared entry in a fixed order (the
@@ -152,20 +152,20 @@ class LinkageAssembly {
   static void add_joint_hessian(const SegmentPlan& plan, int side, int nv, Scratch& scratch);
   // target[run.target + i] = local[run.first + i] over the runs.
   static void copy_runs(const std::vector<CopyRun>& runs, const double* local, double* target);
-  // Inside the caller's parallel region: joint_work(j) for every joint, a
-  // barrier, segment_work(s) for every segment, a barrier; each thread
-  // takes the same ranges at every call (affine_loop.hpp).
+  // By member `self` of the caller's parallel run of `members`
+  // (thread_team.hpp): joint_work(j) for every joint, a barrier,
+  // segment_work(s) for every segment, a barrier; each member takes the
+  // same ranges at every call (affine_loop.hpp).
   template <class JointWork, class SegmentWork>
-  void joints_then_segments(int num_joints, int num_segments, JointWork&& joint_work,
-                            SegmentWork&& segment_work);
+  void joints_then_segments(int self, int members, int num_joints, int num_segments,
+                            JointWork&& joint_work, SegmentWork&& segment_work);
   // Copies segment `plan`'s local gradient to the contribution buffer and to
   // out (the gradient, num_dofs_).
   void store_gradient(const SegmentPlan& plan, const double* local, double* out);
   // Sums the gradient contributions into the entries of out (num_dofs_)
-  // that several segments share: a worksharing loop inside the caller's
-  // parallel region.
-  void sum_gradient(Eigen::VectorXd& out) const;
-  Scratch& scratch_for_thread();
+  // that several segments share: member `self`'s share of them, inside the
+  // caller's parallel run of `members`.
+  void sum_gradient(Eigen::VectorXd& out, int self, int members) const;
   void prepare_scratch();
 
   int num_dofs_ = -1;

@@ -1,19 +1,16 @@
 // AffineLoop (affine_loop.hpp): every item exactly once, each thread's own
 // range first, and a thread that is held back has its range taken over.
+#include "linkage/affine_loop.hpp"
+
 #include <doctest/doctest.h>
 
 #include <atomic>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
-#include "linkage/affine_loop.hpp"
+#include "linkage/thread_team.hpp"
 
 namespace xshell::test {
 
-#ifdef _OPENMP
 namespace {
 
 // Runs the loop over `count` items on `threads` threads (chunk `chunk`),
@@ -23,16 +20,16 @@ struct Record {
 };
 Record run_loop(AffineLoop& loop, int count, int threads, int chunk) {
   Record r{std::vector<int>(count, -1), std::vector<int>(count, 0)};
-#pragma omp parallel num_threads(threads)
-  {
-#pragma omp single
-    loop.reset(count);
-    loop.run(chunk, [&](int i) {
-#pragma omp atomic
-      ++r.times[i];
-      r.owner[i] = omp_get_thread_num();
+  std::vector<std::atomic<int>> times(count);
+  ThreadTeam::shared().run(threads, [&](int self, int members) {
+    if (self == 0) loop.reset(count, members);
+    ThreadTeam::barrier();
+    loop.run(self, chunk, [&](int i) {
+      ++times[i];
+      r.owner[i] = self;
     });
-  }
+  });
+  for (int i = 0; i < count; ++i) r.times[i] = times[i].load();
   return r;
 }
 
@@ -64,19 +61,17 @@ namespace {
 std::vector<std::vector<int>> run_held_back(AffineLoop& loop, int count, int held) {
   std::vector<std::vector<int>> order(2);
   std::atomic<bool> other_done{false};
-#pragma omp parallel num_threads(2)
-  {
-#pragma omp single
-    loop.reset(count);
-    const int self = omp_get_thread_num();
-    if (omp_get_num_threads() == 2) {
+  ThreadTeam::shared().run(2, [&](int self, int members) {
+    if (self == 0) loop.reset(count, members);
+    ThreadTeam::barrier();
+    if (members == 2) {
       if (self == held)
         while (!other_done.load()) {
         }
-      loop.run(1, [&](int i) { order[self].push_back(i); });
+      loop.run(self, 1, [&](int i) { order[self].push_back(i); });
       if (self != held) other_done.store(true);
     }
-  }
+  });
   return order;
 }
 }  // namespace
@@ -99,8 +94,5 @@ TEST_CASE(
   CHECK(order[1] == expected);
   CHECK(order[0].empty());
 }
-#else
-TEST_CASE("AffineLoop without OpenMP") { MESSAGE("built without OpenMP: nothing to compare"); }
-#endif
 
 }  // namespace xshell::test
