@@ -166,34 +166,29 @@ double largest_normal_deviation(vtkPolyData& data) {
   return largest;
 }
 
+// The solids file of a straight rod of 5 edges with `section` (12-gon
+// ellipses, crease angle 60 degrees), read back.
+vtkSmartPointer<vtkPolyData> straight_solid(const SectionSnapshot& section) {
+  ScratchDir dir("straight_solid");
+  const auto path = dir.path() / "solids.vtp";
+  write_solids_file(straight_rod_snapshot(section, {0.2, -0.1, 0.4}, {1.1, 0.5, 0.1}, 5), path, {},
+                    {12, 60.0});
+  return read_polydata(path);
+}
+
 TEST_CASE("solids file: flat faces shade flat and smooth sections smoothly") {
-  const Eigen::Vector3d start(0.2, -0.1, 0.4), end(1.1, 0.5, 0.1);
+  // Every corner of a rectangle is a crease: each face's corners carry its
+  // own normal (8 ring points per node, 4 + 1 per cap).
+  const auto flat = straight_solid({SectionSnapshot::Shape::Rectangle, 0.05, 0.02});
+  CHECK(flat->GetNumberOfPoints() == 6 * 8 + 2 * 5);
+  CHECK(largest_normal_deviation(*flat) < 1e-9);
+  // A 12-gon turns by 30 degrees at each corner, under the crease angle:
+  // one point per corner with the mean of its two sides' normals, 15
+  // degrees from each; the caps are flat.
   const int sides = 12;
-  {
-    // Every corner of a rectangle is a crease: each face's corners carry its
-    // own normal (8 ring points per node, 4 + 1 per cap).
-    ScratchDir dir("flat");
-    const auto path = dir.path() / "solids.vtp";
-    write_solids_file(
-        straight_rod_snapshot({SectionSnapshot::Shape::Rectangle, 0.05, 0.02}, start, end, 5), path,
-        {}, {sides, 60.0});
-    const auto data = read_polydata(path);
-    CHECK(data->GetNumberOfPoints() == 6 * 8 + 2 * 5);
-    CHECK(largest_normal_deviation(*data) < 1e-9);
-  }
-  {
-    // A 12-gon turns by 30 degrees at each corner, under the crease angle:
-    // one point per corner with the mean of its two sides' normals, 15
-    // degrees from each; the caps are flat.
-    ScratchDir dir("smooth");
-    const auto path = dir.path() / "solids.vtp";
-    write_solids_file(
-        straight_rod_snapshot({SectionSnapshot::Shape::Ellipse, 0.04, 0.04}, start, end, 5), path,
-        {}, {sides, 60.0});
-    const auto data = read_polydata(path);
-    CHECK(data->GetNumberOfPoints() == 6 * sides + 2 * (sides + 1));
-    CHECK(largest_normal_deviation(*data) == doctest::Approx(kPi / sides).epsilon(1e-9));
-  }
+  const auto smooth = straight_solid({SectionSnapshot::Shape::Ellipse, 0.04, 0.04});
+  CHECK(smooth->GetNumberOfPoints() == 6 * sides + 2 * (sides + 1));
+  CHECK(largest_normal_deviation(*smooth) == doctest::Approx(kPi / sides).epsilon(1e-9));
 }
 
 TEST_CASE("solids file: a section without width is rejected") {
