@@ -175,8 +175,7 @@ void LinkageAssembly::gradient(const RodLinkage& linkage,
   // One parallel run per evaluation (waking the team and its barriers are
   // the overhead); small linkages stay serial. Joints and segments go to the
   // threads in the same ranges at every call (affine_loop.hpp).
-  const int threads = ns >= kMinParallelSegments ? assembly_threads() : 1;
-  ThreadTeam::shared().run(threads, [&](int self, int members) {
+  ThreadTeam::shared().run(segment_threads(ns), [&](int self, int members) {
     joints_then_segments(
         self, members, nj, ns,
         [&](int j) { joint_geometry_jacobian(linkage.joint(j), joint_geometry_[j]); },
@@ -226,8 +225,7 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
   const int nj = linkage.num_joints();
   joint_geometry_.resize(nj);
   const int ns = static_cast<int>(plans_.size());
-  const int threads = ns >= kMinParallelSegments ? assembly_threads() : 1;
-  ThreadTeam::shared().run(threads, [&](int self, int members) {
+  ThreadTeam::shared().run(segment_threads(ns), [&](int self, int members) {
     joints_then_segments(
         self, members, nj, ns,
         [&](int j) { joint_geometry_derivatives(linkage.joint(j), joint_geometry_[j]); },

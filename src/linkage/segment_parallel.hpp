@@ -14,13 +14,17 @@ namespace xshell {
 // the team and its barriers cost more than they save.
 constexpr int kMinParallelSegments = 32;
 
+// The team size of a per-segment run over `count` segments.
+inline int segment_threads(int count) {
+  return count >= kMinParallelSegments ? assembly_threads() : 1;
+}
+
 // f(s) for s = 0 .. count - 1, in parallel; the first exception is rethrown.
 template <class F>
 void for_each_segment(int count, F&& f) {
   std::exception_ptr failure;
   std::mutex failure_mutex;
-  const int members = count >= kMinParallelSegments ? assembly_threads() : 1;
-  ThreadTeam::shared().run(members, [&](int self, int size) {
+  ThreadTeam::shared().run(segment_threads(count), [&](int self, int size) {
     const MemberRange range = member_range(count, self, size);
     for (long s = range.first; s < range.last; ++s) {
       try {
