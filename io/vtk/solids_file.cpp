@@ -2,7 +2,6 @@
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
-#include <vtkDoubleArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -71,7 +70,7 @@ struct SweptSurface {
   std::vector<int> rod_ids;                                 // per triangle
   std::vector<double> curvature, twist, bending, twisting;  // per point
 
-  SweptSurface() { points->SetDataTypeToDouble(); }
+  SweptSurface() { points->SetDataTypeToFloat(); }
 
   vtkIdType add_point(const Eigen::Vector3d& x, const Eigen::Vector3d& normal,
                       const RodSnapshot& rod, size_t node) {
@@ -156,11 +155,11 @@ void write_solids_file(const Snapshot& snapshot, const std::filesystem::path& pa
   data->SetPolys(surface.triangles);
   data->GetCellData()->AddArray(int_array("rod_id", surface.rod_ids));
   vtkPointData* point_data = data->GetPointData();
-  point_data->SetNormals(vector_array("Normals", surface.normals));
-  point_data->AddArray(scalar_array("curvature", surface.curvature));
-  point_data->AddArray(scalar_array("twist", surface.twist));
-  point_data->AddArray(scalar_array("bending_density", surface.bending));
-  point_data->AddArray(scalar_array("twisting_density", surface.twisting));
+  point_data->SetNormals(float_vector_array("Normals", surface.normals));
+  point_data->AddArray(float_scalar_array("curvature", surface.curvature));
+  point_data->AddArray(float_scalar_array("twist", surface.twist));
+  point_data->AddArray(float_scalar_array("bending_density", surface.bending));
+  point_data->AddArray(float_scalar_array("twisting_density", surface.twisting));
   point_data->SetActiveScalars("bending_density");
   add_units(*data, rod_units());
   write_polydata(*data, path, options);
