@@ -29,9 +29,9 @@ struct PlotLabels {
 PlotLabels plot_labels(const UnitNames& units);
 
 // The plot of a table still being written: the constructor starts, in a
-// thread of its own, the first python3 (on PATH, else /usr/bin/python3)
-// whose script loads matplotlib, which takes about half a second, while the
-// linkage deploys; finish() then has it draw the complete table (or not)
+// thread of its own, the first python3 (Debian's /usr/bin/python3, else the
+// one on PATH) whose script loads matplotlib, which takes about half a
+// second of time the solve leaves idle, while the linkage deploys; finish() then has it draw the complete table (or not)
 // and waits for it. The picture is written atomically (a temporary name in
 // png's folder, then renamed). The destructor finishes without drawing.
 class DeploymentPlotter {
