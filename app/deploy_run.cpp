@@ -185,13 +185,20 @@ std::unique_ptr<DeploymentPlotter> start_plot(const fs::path& dir, const UnitNam
   return std::make_unique<DeploymentPlotter>(dir / kTable, dir / kPlot, units);
 }
 
-void finish_plot(DeploymentPlotter* plotter, bool has_table, bool messages, DeploymentSummary& ds) {
-  if (!plotter) return;
-  const PlotOutcome plot = plotter->finish(has_table);
-  if (plot.written)
-    ds.plot = kPlot;
-  else if (has_table && messages)
-    std::cerr << "xshell: " << kPlot << " skipped: " << plot.message << "\n";
+// Has the plotter draw (when there is a table) and returns the wait for it,
+// which names the plot in the summary or says why there is none.
+std::function<void(DeploymentSummary&)> draw_plot(std::unique_ptr<DeploymentPlotter> plotter,
+                                                  bool has_table, bool messages) {
+  if (!plotter) return {};
+  plotter->start(has_table);
+  std::shared_ptr<DeploymentPlotter> shared = std::move(plotter);
+  return [shared, has_table, messages](DeploymentSummary& ds) {
+    const PlotOutcome plot = shared->finish(has_table);
+    if (plot.written)
+      ds.plot = kPlot;
+    else if (has_table && messages)
+      std::cerr << "xshell: " << kPlot << " skipped: " << plot.message << "\n";
+  };
 }
 
 }  // namespace
@@ -239,7 +246,7 @@ SolverRun run_deployment(const Config& config, LinkageProblem& problem, const fs
                          const RunHooks& hooks) {
   const Deployment& d = *config.deployment;
   DeploymentRecorder recorder(dir, hooks);
-  const std::unique_ptr<DeploymentPlotter> plotter = start_plot(dir, config.units);
+  std::unique_ptr<DeploymentPlotter> plotter = start_plot(dir, config.units);
   recorder.poll();
   const DeploymentResult result =
       deploy(problem, make_plan(d, problem), deployment_options(config), recorder.callbacks());
@@ -255,11 +262,8 @@ SolverRun run_deployment(const Config& config, LinkageProblem& problem, const fs
   if (result.status == SolveStatus::Interrupted && !run.output_error.empty())
     run.result.status = SolveStatus::StepFailed;
   DeploymentSummary ds = deployment_summary(d, result, problem);
-  {
-    const ScopedSeconds timer(hooks.output_seconds);
-    finish_plot(plotter.get(), !result.steps.empty() && run.output_error.empty(), hooks.messages,
-                ds);
-  }
+  run.finish_plot = draw_plot(std::move(plotter), !result.steps.empty() && run.output_error.empty(),
+                              hooks.messages);
   if (hooks.messages)
     std::fprintf(
         stderr,

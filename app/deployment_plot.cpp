@@ -50,7 +50,8 @@ struct DeploymentPlotter::Impl {
   fs::path script, csv, png;
   PlotLabels labels;
   std::promise<bool> decision;  // draw or not
-  PlotOutcome outcome;          // written by the worker before it ends
+  bool decided = false;
+  PlotOutcome outcome;  // written by the worker before it ends
   std::thread worker;
   bool finished = false;
 
@@ -106,11 +107,18 @@ DeploymentPlotter::DeploymentPlotter(fs::path csv, fs::path png, UnitNames units
 
 DeploymentPlotter::~DeploymentPlotter() { finish(false); }
 
+void DeploymentPlotter::start(bool draw) {
+  Impl& s = *impl_;
+  if (s.decided) return;
+  s.decided = true;
+  s.decision.set_value(draw);  // unread when the worker found no python
+}
+
 PlotOutcome DeploymentPlotter::finish(bool draw) {
   Impl& s = *impl_;
+  start(draw);
   if (!s.finished) {
     s.finished = true;
-    s.decision.set_value(draw);  // unread when the worker found no python
     s.worker.join();
   }
   return s.outcome;

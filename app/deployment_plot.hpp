@@ -31,8 +31,9 @@ PlotLabels plot_labels(const UnitNames& units);
 // The plot of a table still being written: the constructor starts, in a
 // thread of its own, the first python3 (Debian's /usr/bin/python3, else the
 // one on PATH) whose script loads matplotlib, which takes about half a
-// second of time the solve leaves idle, while the linkage deploys; finish() then has it draw the complete table (or not)
-// and waits for it. The picture is written atomically (a temporary name in
+// second of time the solve leaves idle, while the linkage deploys; start()
+// then has it draw the complete table (or not) while the caller goes on,
+// and finish() waits for it. The picture is written atomically (a temporary name in
 // png's folder, then renamed). The destructor finishes without drawing.
 class DeploymentPlotter {
  public:
@@ -44,8 +45,11 @@ class DeploymentPlotter {
   DeploymentPlotter(const DeploymentPlotter&) = delete;
   DeploymentPlotter& operator=(const DeploymentPlotter&) = delete;
 
-  // Draws `csv` into `png` when `draw`; the outcome (not written, no
-  // message, when not asked to draw). Later calls return the same outcome.
+  // Has it draw `csv` into `png` when `draw`, or end; the first call
+  // decides, later ones change nothing.
+  void start(bool draw);
+  // start(draw), then waits: the outcome (not written, no message, when not
+  // asked to draw). Later calls return the same outcome.
   PlotOutcome finish(bool draw);
 
  private:

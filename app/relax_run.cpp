@@ -317,6 +317,10 @@ std::string write_final_outputs(LoadedRun& run, const SolverRun& solved, RunOutp
       }
     }
   }
+  if (solved.finish_plot && summary.deployment) {
+    const ScopedSeconds timer(&summary.timings.output);
+    solved.finish_plot(*summary.deployment);
+  }
   summary.wall_seconds = progress.elapsed();
   if (!outputs) return error;
   outputs->write_summary(summary);

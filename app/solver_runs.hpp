@@ -46,6 +46,9 @@ struct SolverRun {
   std::optional<double> simulated_time;         // dynamics only
   std::optional<DeploymentSummary> deployment;  // deployments only
   std::string output_error;  // an output of the run's own (deployment.csv) could not be written
+  // A deployment's plot being drawn while the final outputs are written:
+  // waits for it and names it in the summary's deployment (empty: none).
+  std::function<void(DeploymentSummary&)> finish_plot;
 };
 
 // The solvers' options from the configuration's "solver".

@@ -100,6 +100,14 @@ TEST_CASE("The deployment plot loads before the table exists and draws it once c
     CHECK_FALSE(skipped.written);
     CHECK(skipped.message.empty());
   }
+  // start() returns while matplotlib still loads; its decision holds.
+  {
+    DeploymentPlotter plotter(dir / "table.csv", dir / "started.png", {}, kScript);
+    plotter.start(true);
+    CHECK_FALSE(fs::exists(dir / "started.png"));
+    CHECK(plotter.finish(false).written);
+  }
+  CHECK(fs::file_size(dir / "started.png") > 1000);
   { DeploymentPlotter destroyed(dir / "table.csv", dir / "destroyed.png", {}, kScript); }
   CHECK_FALSE(fs::exists(dir / "skipped.png"));
   CHECK_FALSE(fs::exists(dir / "destroyed.png"));
@@ -110,7 +118,7 @@ TEST_CASE("The deployment plot loads before the table exists and draws it once c
   CHECK(failed.message.find("failed to draw") != std::string::npos);
   int files = 0;
   for (const auto& entry : fs::directory_iterator(dir)) files += entry.is_regular_file();
-  CHECK(files == 2);  // table.csv and plot.png
+  CHECK(files == 3);  // table.csv, plot.png and started.png
 }
 
 TEST_CASE("Without its script the deployment plot says so") {
