@@ -134,10 +134,14 @@ void DynamicsRun::create_integrator() {
     // output time), which sees nothing of a start at rest when the
     // velocities are out of the error test; on the slow manifold, it is
     // sized for a fast layer that this start does not have: begin
-    // start.step_factor times longer.
+    // start.step_factor times longer, or start.rest_step_factor times from
+    // rest (second order).
     double h0 = first_step(y, yp0, absolute_tolerances(), options.error_control.relative_tolerance,
                            n, q_only);
-    if (on_slow_manifold && options.start.step_factor > 1.0) h0 *= options.start.step_factor;
+    const double factor = !second_order      ? 1.0
+                          : on_slow_manifold ? options.start.step_factor
+                                             : options.start.rest_step_factor;
+    if (factor > 1.0) h0 *= factor;
     if (h0 > 0.0) check_sundials(IDASetInitStep(integrator->ida.get(), h0), "IDASetInitStep");
   }
   time_scale = 1.0 / system.damping().rate;

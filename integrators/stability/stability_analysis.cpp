@@ -27,7 +27,7 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
   // One CHOLMOD solver for H - sigma M and K_0: the same pattern, one
   // symbolic analysis.
   CholeskySolver solver;
-  report({"eigen_modes"});
+  report({"eigen_modes", 0, std::nullopt, std::nullopt});
   EigenModesOptions modes = options.modes;
   modes.deadline = options.deadline;
   out.modes = lowest_eigenmodes(loaded_hessian, problem.free_mass(), modes, &solver);
@@ -40,7 +40,7 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
     out.buckling.status = BucklingStatus::TimeLimit;
     return out;
   }
-  report({"unloaded_equilibrium"});
+  report({"unloaded_equilibrium", 0, std::nullopt, std::nullopt});
   // The same supports; the default pin is chosen again (the same joint) and
   // holds that joint where it is, as it did in `problem`.
   StaticsSetup unloaded_setup;
@@ -71,7 +71,7 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
     out.buckling.status = BucklingStatus::UnloadedUnstable;
     return out;
   }
-  report({"buckling"});
+  report({"buckling", 0, std::nullopt, std::nullopt});
   BucklingOptions buckling;
   buckling.deadline = options.deadline;
   out.buckling = linearized_buckling(unloaded.free_hessian(), loaded_hessian, buckling, &solver);

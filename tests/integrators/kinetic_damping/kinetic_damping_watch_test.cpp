@@ -88,7 +88,7 @@ TEST_CASE("kinetic damping watch: flat at round-off is stagnation, in a window t
   INFO(flat.reason);
   CHECK(flat.reason.find("did not halve (smallest 1.000e-09)") != std::string::npos);
   // Early in a run the window is min_window (2,000).
-  const Verdict early = watch(100000, [](long k, double& e, double& g, double& kinetic) {
+  const Verdict early = watch(100000, [](long, double& e, double& g, double& kinetic) {
     e = -2.0;
     g = 1e-6;
     kinetic = 0.0;
