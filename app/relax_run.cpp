@@ -279,9 +279,9 @@ std::string record_engineering(LoadedRun& run, const fs::path& dir, RunSummary& 
             if (p.iteration == 0)
               progress.phase("analysis", p.stage);
             else
-              progress.sample(
-                  {"analysis", p.stage, p.iteration, p.energy, p.gradient, std::nullopt, std::nullopt},
-                  true);
+              progress.sample({"analysis", p.stage, p.iteration, p.energy, p.gradient, std::nullopt,
+                               std::nullopt},
+                              true);
           });
     }
     const ScopedSeconds timer(&summary.timings.output);

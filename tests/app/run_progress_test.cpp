@@ -21,7 +21,8 @@ std::vector<std::string> printed(ProgressStyle style, int samples, bool own_line
   {
     RunProgress progress(style, RunProgress::Clock::now(), file);
     progress.phase("solve");
-    for (int k = 0; k < samples; ++k) progress.sample({"solve", "newton", k, 1.5, 1e-3, std::nullopt, std::nullopt}, own_line);
+    for (int k = 0; k < samples; ++k)
+      progress.sample({"solve", "newton", k, 1.5, 1e-3, std::nullopt, std::nullopt}, own_line);
     RunTimings t;
     t.solve = 0.25;
     progress.finish("converged", t, 0.5);
