@@ -30,8 +30,8 @@ PlotLabels plot_labels(const UnitNames& units);
 
 // The plot of a table still being written: the constructor starts, in a
 // thread of its own, the first python3 (Debian's /usr/bin/python3, else the
-// one on PATH) whose script loads matplotlib, which takes about half a
-// second of time the solve leaves idle, while the linkage deploys; start()
+// one on PATH) whose script loads matplotlib at a lower priority, which
+// takes about half a second, while the linkage deploys; start()
 // then has it draw the complete table (or not) while the caller goes on,
 // and finish() waits for it. The picture is written atomically (a temporary name in
 // png's folder, then renamed). The destructor finishes without drawing.
