@@ -31,10 +31,11 @@ PlotLabels plot_labels(const UnitNames& units);
 // The plot of a table still being written: the constructor starts, in a
 // thread of its own, the first python3 (Debian's /usr/bin/python3, else the
 // one on PATH) whose script loads matplotlib at a lower priority, which
-// takes about half a second, while the linkage deploys; start()
-// then has it draw the complete table (or not) while the caller goes on,
-// and finish() waits for it. The picture is written atomically (a temporary name in
-// png's folder, then renamed). The destructor finishes without drawing.
+// takes about half a second, while the linkage deploys; start() then has
+// it draw the complete table (or not) while the caller goes on, and
+// finish() waits for it. The picture is written atomically (a temporary
+// name in png's folder, then renamed). The destructor finishes without
+// drawing.
 class DeploymentPlotter {
  public:
   // `script`: plot_deployment.py's path, found as the header says when
