@@ -15,6 +15,7 @@
 #include "integrators/deployment/average_constraint.hpp"
 #include "integrators/deployment/constrained_newton.hpp"
 #include "integrators/deployment/constrained_objective.hpp"
+#include "integrators/deployment/joint_charts.hpp"
 #include "integrators/deployment/path_predictor.hpp"
 #include "integrators/deployment/step_control.hpp"
 #include "integrators/stability/branch_bias.hpp"
@@ -82,6 +83,10 @@ class Deployer {
       newton_ = std::make_unique<NewtonSolver>(objective_, options_.newton);
     const std::vector<bool> frame_free = frame_free_unknowns(linkage);
     for (int r : problem.free_indices()) comparable_.push_back(frame_free[r]);
+    // Their omegas are compared in one chart (joint_charts.hpp).
+    rotations_ = free_rotations(problem);
+    for (const FreeRotation& r : rotations_)
+      for (int i : r.free) comparable_[i] = true;
     start_twin();
   }
   ~Deployer();
@@ -159,7 +164,9 @@ class Deployer {
           Eigen::VectorXd predicted = q + change * t;
           if (options_.predictor == DeploymentPredictor::Quadratic)
             if (path_.size() == 2)
-              predicted += path_curvature_step(path_[0], path_[1], t, change, comparable_);
+              predicted += path_curvature_step(
+                  in_current_charts(path_[0], path_[0].frames, problem_.linkage(), rotations_),
+                  path_[1], t, change, comparable_);
           constraint_->project(predicted, target);  // round-off only: a . t = 1
           try {
             problem_.set_free_dofs(predicted);
@@ -338,7 +345,7 @@ class Deployer {
     if (jumped) path_.clear();
     if (path_.size() == 2) path_.erase(path_.begin());
     const Eigen::VectorXd q = problem_.free_dofs();
-    path_.push_back({q, constraint_->value(q)});
+    path_.push_back({q, constraint_->value(q), {}, joint_frames(problem_.linkage(), rotations_)});
   }
 
   // The branch choice under loads (DeploymentOptions::follow_unloaded_twin).
@@ -377,7 +384,8 @@ class Deployer {
   std::string last_reason_;
   std::unique_ptr<Twin> twin_;    // while the branch choice follows it
   std::vector<PathPoint> path_;   // the last (at most two) equilibria of the path
-  std::vector<bool> comparable_;  // per free unknown: frame_free_unknowns()
+  std::vector<bool> comparable_;  // per free unknown: frame_free_unknowns(), and rotations_
+  std::vector<FreeRotation> rotations_;
 };
 
 // The same problem and plan without the loads' component along the

@@ -23,6 +23,9 @@ struct PathPoint {
   double value = 0.0;  // the path parameter there (the average opening angle)
   // dq/dA there, once computed (empty until then).
   Eigen::VectorXd tangent = {};
+  // The rotation joints' frames there (joint_charts.hpp), which say what
+  // its omegas mean.
+  std::vector<Eigen::Matrix3d> frames = {};
 };
 
 // The terms beyond q1 + h t1 above (cubic when previous.tangent has q's
