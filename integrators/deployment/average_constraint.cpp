@@ -104,25 +104,69 @@ Eigen::VectorXd AverageConstraint::coordinates(const Eigen::VectorXd& dq) const 
 }
 
 Eigen::SparseMatrix<double> AverageConstraint::reduce(const Eigen::SparseMatrix<double>& H) const {
-  // Row i of B: +1 in i's own column (unless i is the root), -1 in the
-  // column of each child of i.
-  auto for_row = [&](int i, auto&& f) {
-    if (i != root_) f(z_index(i), 1.0);
-    for (int c : children_[i]) f(z_index(c), -1.0);
-  };
+  Eigen::SparseMatrix<double> out;
+  reduce(H, out);
+  return out;
+}
+
+void AverageConstraint::reduce(const Eigen::SparseMatrix<double>& H,
+                               Eigen::SparseMatrix<double>& out) const {
+  if (!H.isCompressed()) throw std::invalid_argument("AverageConstraint::reduce: H not compressed");
+  if (!planned_for(H)) plan_for(H);
+  const ReducePlan& p = plan_;
+  if (out.nonZeros() != p.pattern.nonZeros() || out.rows() != p.pattern.rows() ||
+      !std::equal(p.pattern.outerIndexPtr(), p.pattern.outerIndexPtr() + p.pattern.cols() + 1,
+                  out.outerIndexPtr()) ||
+      !std::equal(p.pattern.innerIndexPtr(), p.pattern.innerIndexPtr() + p.pattern.nonZeros(),
+                  out.innerIndexPtr()))
+    out = p.pattern;
+  double* values = out.valuePtr();
+  std::fill(values, values + out.nonZeros(), 0.0);
+  const double* h = H.valuePtr();
+  for (Eigen::Index k = 0; k < H.nonZeros(); ++k)
+    for (int j = p.start[k]; j < p.start[k + 1]; ++j) values[p.dest[j]] += p.sign[j] * h[k];
+}
+
+bool AverageConstraint::planned_for(const Eigen::SparseMatrix<double>& H) const {
+  const ReducePlan& p = plan_;
+  return static_cast<Eigen::Index>(p.outer.size()) == H.cols() + 1 &&
+         static_cast<Eigen::Index>(p.inner.size()) == H.nonZeros() &&
+         std::equal(p.outer.begin(), p.outer.end(), H.outerIndexPtr()) &&
+         std::equal(p.inner.begin(), p.inner.end(), H.innerIndexPtr());
+}
+
+// The result's pattern from H's (B has at most one entry per column of a
+// non-member row and one more per child), then each of H's entries' places.
+void AverageConstraint::plan_for(const Eigen::SparseMatrix<double>& H) const {
+  if (H.rows() != size_ || H.cols() != size_)
+    throw std::invalid_argument("AverageConstraint::reduce: H does not fit the constraint");
+  ReducePlan p;
+  p.outer.assign(H.outerIndexPtr(), H.outerIndexPtr() + H.cols() + 1);
+  p.inner.assign(H.innerIndexPtr(), H.innerIndexPtr() + H.nonZeros());
   std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<size_t>(H.nonZeros()) + 8 * members_.size() * 9);
+  for (int col = 0; col < H.outerSize(); ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(H, col); it; ++it)
+      for_row(static_cast<int>(it.row()), [&](int zr, double) {
+        for_row(col, [&](int zc, double) { triplets.emplace_back(zr, zc, 1.0); });
+      });
+  p.pattern.resize(size_ - 1, size_ - 1);
+  p.pattern.setFromTriplets(triplets.begin(), triplets.end());
+  p.pattern.makeCompressed();
+  p.start.assign(1, 0);
   for (int col = 0; col < H.outerSize(); ++col)
     for (Eigen::SparseMatrix<double>::InnerIterator it(H, col); it; ++it) {
-      const int row = static_cast<int>(it.row());
-      const double v = it.value();
-      for_row(row, [&](int zr, double br) {
-        for_row(col, [&](int zc, double bc) { triplets.emplace_back(zr, zc, br * v * bc); });
+      for_row(static_cast<int>(it.row()), [&](int zr, double br) {
+        for_row(col, [&](int zc, double bc) {
+          const int* first = p.pattern.innerIndexPtr() + p.pattern.outerIndexPtr()[zc];
+          const int* last = p.pattern.innerIndexPtr() + p.pattern.outerIndexPtr()[zc + 1];
+          p.dest.push_back(static_cast<int>(std::lower_bound(first, last, zr) -
+                                            p.pattern.innerIndexPtr()));
+          p.sign.push_back(br * bc);
+        });
       });
+      p.start.push_back(static_cast<int>(p.dest.size()));
     }
-  Eigen::SparseMatrix<double> out(size_ - 1, size_ - 1);
-  out.setFromTriplets(triplets.begin(), triplets.end());
-  return out;
+  plan_ = std::move(p);
 }
 
 Eigen::VectorXd AverageConstraint::reduce_diagonal(const Eigen::VectorXd& m) const {

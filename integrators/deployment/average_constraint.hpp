@@ -62,8 +62,12 @@ class AverageConstraint {
   // z with B z = dq, for dq whose members sum to 0 (a . dq = 0).
   Eigen::VectorXd coordinates(const Eigen::VectorXd& dq) const;
   // B^T H B for H (n x n, both triangles); both triangles, and its pattern
-  // depends only on H's pattern.
+  // depends only on H's pattern. The scatter from H's entries to the
+  // result's is planned once per pattern and kept (so one constraint
+  // serves one thread at a time); `out` keeps its storage when its pattern
+  // is already the result's.
   Eigen::SparseMatrix<double> reduce(const Eigen::SparseMatrix<double>& H) const;
+  void reduce(const Eigen::SparseMatrix<double>& H, Eigen::SparseMatrix<double>& out) const;
   // diag(B^T diag(m) B): a lumped mass in z.
   Eigen::VectorXd reduce_diagonal(const Eigen::VectorXd& m) const;
   // Per-entry weights (n) carried to z (n-1): each z entry keeps the weight
@@ -79,7 +83,24 @@ class AverageConstraint {
   std::vector<int> member_order_;           // free indices of the members, parents before children
   std::vector<std::vector<int>> children_;  // per free index (empty for non-members)
   Eigen::VectorXd a_;
+  // reduce()'s plan for the last pattern of H: H's entry k adds
+  // sign[j] * H_k to the result's entry dest[j], j in [start[k], start[k+1]).
+  struct ReducePlan {
+    std::vector<int> outer, inner;        // H's pattern
+    Eigen::SparseMatrix<double> pattern;  // the result's
+    std::vector<int> start, dest;
+    std::vector<double> sign;
+  };
+  mutable ReducePlan plan_;
   int z_index(int i) const { return i < root_ ? i : i - 1; }  // i != root_
+  // Calls f(z row, B entry) for the nonzeros of row i of B.
+  template <class F>
+  void for_row(int i, F&& f) const {
+    if (i != root_) f(z_index(i), 1.0);
+    for (int c : children_[i]) f(z_index(c), -1.0);
+  }
+  bool planned_for(const Eigen::SparseMatrix<double>& H) const;
+  void plan_for(const Eigen::SparseMatrix<double>& H) const;
 };
 
 // The average opening angle over all joints of `problem`'s linkage, as a

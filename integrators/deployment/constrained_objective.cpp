@@ -26,7 +26,7 @@ double ConstrainedObjective::set_and_energy(const Eigen::VectorXd& z) {
 }
 
 const Eigen::SparseMatrix<double>& ConstrainedObjective::hessian() {
-  hessian_ = constraint_.reduce(inner_.hessian());
+  constraint_.reduce(inner_.hessian(), hessian_);
   return hessian_;
 }
 

@@ -120,3 +120,44 @@ TEST_CASE(
 }
 
 }  // namespace xshell::test
+
+namespace xshell::test {
+
+TEST_CASE("The reduced Hessian's plan follows H's pattern and values, its storage reused") {
+  const AverageConstraint c(9, {1, 3, 4, 7, 8}, {-1, 0, 0, 2, 2}, 6, 0.3);
+  const Eigen::MatrixXd B = dense_basis(c);
+  std::mt19937 rng(11);
+  // Sparse symmetric H of a random pattern (density `fill`), diagonal included.
+  const auto random_sparse = [&](double fill) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(9, 9);
+    for (int i = 0; i < 9; ++i)
+      for (int j = 0; j <= i; ++j)
+        if (i == j || u(rng) < fill) H(i, j) = H(j, i) = 2.0 * u(rng) - 1.0;
+    return H;
+  };
+  Eigen::SparseMatrix<double> out;
+  int checks = 0;
+  for (double fill : {0.2, 0.2, 0.6, 0.1}) {
+    const Eigen::MatrixXd H = random_sparse(fill);
+    Eigen::SparseMatrix<double> Hs = H.sparseView();
+    Hs.makeCompressed();
+    for (int values = 0; values < 2; ++values) {  // the same pattern, new values
+      if (values == 1) Hs.coeffs() *= -0.5;
+      const double* storage = out.valuePtr();
+      const Eigen::Index nonzeros = out.nonZeros();
+      c.reduce(Hs, out);
+      const Eigen::MatrixXd expected = B.transpose() * Eigen::MatrixXd(Hs) * B;
+      CHECK((Eigen::MatrixXd(out) - expected).norm() <= 1e-14 * (1.0 + expected.norm()));
+      if (values == 1) CHECK((out.valuePtr() == storage && out.nonZeros() == nonzeros));
+      CHECK((Eigen::MatrixXd(c.reduce(Hs)) - expected).norm() <= 1e-14 * (1.0 + expected.norm()));
+      checks += values == 1 ? 3 : 2;
+    }
+  }
+  CHECK(checks == 20);
+  Eigen::SparseMatrix<double> wrong(8, 8);
+  wrong.makeCompressed();
+  CHECK_THROWS_AS(c.reduce(wrong), std::invalid_argument);
+}
+
+}  // namespace xshell::test
