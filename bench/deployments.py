@@ -29,12 +29,15 @@ many steps ended unstable. With --gravity G (length/s^2, downwards along
 so G = 9810 for millimetres and seconds) and the run ends with the
 stability analysis of a loaded state (its eigenmodes and buckling load
 factor): the table adds the analysis' share of the run's wall time, its
-stages' seconds (from the run's --progress json) and its statuses.
+stages' seconds (from the run's --progress json) and its statuses. With
+--solver dynamics the deployments run by damped dynamics ("solver":
+{"method": "dynamics"}), to set beside Newton's; "iterations" are then time
+steps.
 
   /usr/bin/python3 bench/deployments.py [--xshell build/app/xshell]
       [--data ../shared/data/elasticrods] [--designs manta_ray,...]
       [--reps 3] [--subdivisions 8] [--steps 20] [--csv FILE] [--keep DIR]
-      [--gravity 9810] [--density 7e-10]
+      [--gravity 9810] [--density 7e-10] [--solver newton|dynamics]
 
 Needs the data folder; says so and exits 0 when it is absent (skipped).
 """
@@ -71,7 +74,7 @@ COLUMNS = ["design", "steps", "iterations", "factorizations", "iterations_per_st
 STAGES = ["eigen_modes", "unloaded_equilibrium", "buckling"]
 
 
-def config(obj, subdivisions, deployment=None, gravity=None, density=7e-10):
+def config(obj, subdivisions, deployment=None, gravity=None, density=7e-10, solver="newton"):
     c = {
         "linkage": obj,
         "subdivisions": subdivisions,
@@ -82,6 +85,8 @@ def config(obj, subdivisions, deployment=None, gravity=None, density=7e-10):
     }
     if deployment is not None:
         c["deployment"] = deployment
+        if solver != "newton":
+            c["solver"] = {"method": solver}
     if gravity:
         c["material"]["density"] = density
         c["loads"] = {"gravity": [0.0, 0.0, -gravity]}
@@ -106,7 +111,8 @@ def average_angle(summary):
     return sum(angles) / len(angles)
 
 
-def prepare(xshell, data, name, subdivisions, steps, root, gravity=None, density=7e-10):
+def prepare(xshell, data, name, subdivisions, steps, root, gravity=None, density=7e-10,
+            solver="newton"):
     """The case's folder and configuration (relaxing the flat state first
     for a relative target)."""
     obj, (kind, value) = DESIGNS[name]
@@ -129,7 +135,7 @@ def prepare(xshell, data, name, subdivisions, steps, root, gravity=None, density
         args += ["--init", os.path.join("flat", "state.json")]
     deployment = {"average_opening_angle": target, "steps": steps}
     with open(os.path.join(folder, "deploy.json"), "w") as f:
-        json.dump(config(path, subdivisions, deployment, gravity, density), f)
+        json.dump(config(path, subdivisions, deployment, gravity, density, solver), f)
     return folder, args + ["--progress", "json"]
 
 
@@ -211,6 +217,8 @@ def main():
     parser.add_argument("--keep", help="run in this folder and keep it (default: a temporary one)")
     parser.add_argument("--gravity", type=float, help="downwards acceleration (length/s^2)")
     parser.add_argument("--density", type=float, default=7e-10, help="with --gravity")
+    parser.add_argument("--solver", choices=["newton", "dynamics"], default="newton",
+                        help="the deployment's solver (the flat states are relaxed by Newton)")
     a = parser.parse_args()
     if not os.path.isdir(a.data):
         print(f"deployments: skipped: no data folder {a.data}")
@@ -222,7 +230,8 @@ def main():
     xshell = os.path.abspath(a.xshell)
     root = a.keep or tempfile.mkdtemp(prefix="xshell-deployments-")
     os.makedirs(root, exist_ok=True)
-    cases = {n: prepare(xshell, a.data, n, a.subdivisions, a.steps, root, a.gravity, a.density)
+    cases = {n: prepare(xshell, a.data, n, a.subdivisions, a.steps, root, a.gravity, a.density,
+                        a.solver)
              for n in names}
     runs = {n: [] for n in names}
     for rep in range(a.reps):
