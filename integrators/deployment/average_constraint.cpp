@@ -159,8 +159,8 @@ void AverageConstraint::plan_for(const Eigen::SparseMatrix<double>& H) const {
         for_row(col, [&](int zc, double bc) {
           const int* first = p.pattern.innerIndexPtr() + p.pattern.outerIndexPtr()[zc];
           const int* last = p.pattern.innerIndexPtr() + p.pattern.outerIndexPtr()[zc + 1];
-          p.dest.push_back(static_cast<int>(std::lower_bound(first, last, zr) -
-                                            p.pattern.innerIndexPtr()));
+          p.dest.push_back(
+              static_cast<int>(std::lower_bound(first, last, zr) - p.pattern.innerIndexPtr()));
           p.sign.push_back(br * bc);
         });
       });

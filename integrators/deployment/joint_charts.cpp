@@ -33,8 +33,7 @@ std::vector<Eigen::Matrix3d> joint_frames(const RodLinkage& linkage,
   frames.reserve(rotations.size());
   for (const FreeRotation& r : rotations) {
     const Joint& joint = linkage.joint(r.joint);
-    frames.push_back(rotation_matrix(joint.params().segment<3>(kOmega)) *
-                     joint.reference_frame());
+    frames.push_back(rotation_matrix(joint.params().segment<3>(kOmega)) * joint.reference_frame());
   }
   return frames;
 }
@@ -51,7 +50,8 @@ void scatter(const Eigen::Vector3d& w, const FreeRotation& r, Eigen::VectorXd& v
 
 }  // namespace
 
-PathPoint in_current_charts(const PathPoint& point, const std::vector<Eigen::Matrix3d>& point_frames,
+PathPoint in_current_charts(const PathPoint& point,
+                            const std::vector<Eigen::Matrix3d>& point_frames,
                             const RodLinkage& linkage, const std::vector<FreeRotation>& rotations) {
   PathPoint out = point;
   const bool tangent = point.tangent.size() == point.q.size();

@@ -34,7 +34,8 @@ std::vector<Eigen::Matrix3d> joint_frames(const RodLinkage& linkage,
 // `point`, taken when the joints' frames were `point_frames`, with its
 // omegas (and its tangent's, when it has one) in the charts of `linkage`'s
 // joints now.
-PathPoint in_current_charts(const PathPoint& point, const std::vector<Eigen::Matrix3d>& point_frames,
+PathPoint in_current_charts(const PathPoint& point,
+                            const std::vector<Eigen::Matrix3d>& point_frames,
                             const RodLinkage& linkage, const std::vector<FreeRotation>& rotations);
 
 }  // namespace xshell

@@ -18,8 +18,7 @@ struct CurvedPath {
   Eigen::VectorXd tangent(double s) const { return v + 2.0 * s * w; }
 };
 
-CurvedPath curved_path(const LinkageProblem& problem,
-                       const std::vector<FreeRotation>& rotations) {
+CurvedPath curved_path(const LinkageProblem& problem, const std::vector<FreeRotation>& rotations) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   CurvedPath p{problem.free_dofs(), {}, {}};
@@ -35,7 +34,8 @@ CurvedPath curved_path(const LinkageProblem& problem,
 
 }  // namespace
 
-TEST_CASE("An equilibrium's omegas and their rates, re-expressed after a fold, give the same frames") {
+TEST_CASE(
+    "An equilibrium's omegas and their rates, re-expressed after a fold, give the same frames") {
   LinkageProblem problem = dome_problem(3);
   const std::vector<FreeRotation> rotations = free_rotations(problem);
   // The pinned centre joint's omegas are not free; the other eight are.
