@@ -3,7 +3,9 @@
 #include <chrono>
 #include <cstdio>
 #include <future>
+#include <optional>
 
+#include "integrators/deployment/average_constraint.hpp"
 #include "io/engineering_json.hpp"
 #include "io/vtk/engineering_files.hpp"
 #include "io/vtk/joints_file.hpp"
@@ -35,6 +37,17 @@ std::string budget_warning(const Config& config) {
   return text;
 }
 
+std::string refuted_warning(const StabilityAnalysis& stability) {
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "the linearized buckling load factor %.6g was refuted: the structure is still "
+                "stable under the loads times %.6g, so no buckling load factor is reported (the "
+                "linear estimate fails when the loads move the structure far from its unloaded "
+                "equilibrium)",
+                stability.buckling.load_factor, stability.check_factor.value_or(0.0));
+  return text;
+}
+
 }  // namespace
 
 EngineeringSnapshot engineering_results(
@@ -47,10 +60,18 @@ EngineeringSnapshot engineering_results(
 
   StabilityOptions options = stability_options(config);
   options.on_progress = on_progress;
+  // A deployment by the average angle ends held at it.
+  std::optional<AverageConstraint> held;
+  if (config.deployment && config.deployment->target == DeploymentTarget::AverageOpeningAngle) {
+    held.emplace(average_opening_angle_constraint(problem));
+    options.held = &*held;
+  }
   const StabilityAnalysis stability = analyse_stability(problem, options);
   if (stability.modes.reason == kTimeLimit ||
       stability.buckling.status == BucklingStatus::TimeLimit)
     summary.warnings.push_back(budget_warning(config));
+  if (stability.buckling.status == BucklingStatus::Refuted)
+    summary.warnings.push_back(refuted_warning(stability));
   StabilityValues values;
   values.eigen_status = stability.modes.converged ? "converged" : stability.modes.reason;
   for (Eigen::Index k = 0; k < stability.modes.values.size(); ++k)

@@ -71,7 +71,7 @@ COLUMNS = ["design", "steps", "iterations", "factorizations", "iterations_per_st
            "unstable_steps", "status", "reps"]
 
 # The analysis' stages, in their order (README, "Progress").
-STAGES = ["eigen_modes", "unloaded_equilibrium", "buckling"]
+STAGES = ["eigen_modes", "unloaded_equilibrium", "buckling", "buckling_check"]
 
 
 def config(obj, subdivisions, deployment=None, gravity=None, density=7e-10, solver="newton"):
@@ -247,6 +247,7 @@ def main():
     if a.gravity:
         show[show.index("output_s") + 1:show.index("output_s") + 1] = [
             "analysis_share", "eigen_modes_s", "unloaded_equilibrium_s", "buckling_s",
+            "buckling_check_s",
             "eigenvalues", "buckling", "load_factor"]
     print(" | ".join(show))
     for row in table:

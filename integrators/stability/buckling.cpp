@@ -196,6 +196,8 @@ const char* buckling_status_name(BucklingStatus status) {
       return "unloaded_unstable";
     case BucklingStatus::NotConverged:
       return "not_converged";
+    case BucklingStatus::Refuted:
+      return "refuted";
     case BucklingStatus::TimeLimit:
       return kTimeLimit;
   }

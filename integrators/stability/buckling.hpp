@@ -47,6 +47,9 @@ enum class BucklingStatus {
   UnloadedUnstable,  // K_0 is not positive definite (a mechanism or unstable without loads)
   NotConverged,      // the eigensolver did not converge
   TimeLimit,         // options.deadline passed first ("time_limit")
+  // Checked and found wrong (stability_analysis.hpp): the structure is still
+  // stable under the loads times (1 + margin) load_factor ("refuted").
+  Refuted,
 };
 
 struct BucklingOptions {

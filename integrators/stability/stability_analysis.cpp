@@ -3,6 +3,7 @@
 #include <atomic>
 
 #include "integrators/common/linkage_objective.hpp"
+#include "integrators/deployment/constrained_newton.hpp"
 #include "integrators/linear_algebra/cholesky_solver.hpp"
 
 namespace xshell {
@@ -14,6 +15,36 @@ bool has_loads(const LinkageProblem& problem) {
   for (const Eigen::VectorXd& f : problem.segment_loads())
     if (f.squaredNorm() > 0.0) return true;
   return false;
+}
+
+enum class CheckOutcome { Stable, Unstable, TimeLimit };
+
+// Newton from the problem's state (a copy) under its loads times `factor`,
+// saddles kept (held at the average when options.held).
+CheckOutcome solve_scaled(const LinkageProblem& problem, double factor,
+                          const StabilityOptions& options,
+                          const std::function<void(const StabilityProgress&)>& report) {
+  LinkageProblem scaled = problem;
+  scaled.scale_loads(factor);
+  LinkageObjective objective(scaled);
+  NewtonOptions newton = options.unloaded_newton;
+  newton.escape.enabled = false;
+  std::atomic<bool> stop{false};
+  NewtonCallbacks callbacks;
+  callbacks.stop = &stop;
+  callbacks.on_iteration = [&](const NewtonReport& r) {
+    if (r.iteration > 0) report({"buckling_check", r.iteration, r.energy, r.gradient_measure});
+    if (options.deadline.passed()) stop = true;
+  };
+  SolveResult result;
+  if (options.held) {
+    ConstrainedNewtonSolver solver(objective, *options.held, newton);
+    result = solver.solve(options.held->value(scaled.free_dofs()), callbacks);
+  } else {
+    result = solve_newton(objective, newton, callbacks);
+  }
+  if (stop.load()) return CheckOutcome::TimeLimit;
+  return result.converged() && result.stable ? CheckOutcome::Stable : CheckOutcome::Unstable;
 }
 
 }  // namespace
@@ -75,6 +106,20 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
   BucklingOptions buckling;
   buckling.deadline = options.deadline;
   out.buckling = linearized_buckling(unloaded.free_hessian(), loaded_hessian, buckling, &solver);
+  if (out.buckling.status != BucklingStatus::Found || !(options.check_margin > 0.0)) return out;
+  report({"buckling_check", 0, std::nullopt, std::nullopt});
+  out.check_factor = (1.0 + options.check_margin) * out.buckling.load_factor;
+  switch (solve_scaled(problem, *out.check_factor, options, report)) {
+    case CheckOutcome::Stable:
+      out.stable_at_check = true;
+      out.buckling.status = BucklingStatus::Refuted;
+      break;
+    case CheckOutcome::Unstable:
+      break;
+    case CheckOutcome::TimeLimit:
+      out.buckling.status = BucklingStatus::TimeLimit;
+      break;
+  }
   return out;
 }
 

@@ -3,6 +3,16 @@
 // load factor of the current loads (buckling.hpp), whose unloaded stiffness
 // K_0 is the free Hessian at the equilibrium of the same linkage with the
 // same supports and no loads, found by Newton from the loaded state.
+//
+// The linear estimate is then checked by one more solve: Newton from the
+// loaded state under the loads times (1 + check_margin) lambda, without
+// leaving saddles (held at the average opening angle when `held`). A
+// stable equilibrium there refutes it (status Refuted): the structure
+// carries more than the estimate says, which happens when the loads move
+// it far (a soft deployed linkage under its own weight: the unloaded
+// equilibrium lies far away, and the interpolation between the two
+// stiffnesses turns singular just past the current loads). An unstable
+// equilibrium or none (a fold passed) confirms it.
 #pragma once
 
 #include <Eigen/Core>
@@ -11,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "integrators/deployment/average_constraint.hpp"
 #include "integrators/newton/newton.hpp"
 #include "integrators/stability/buckling.hpp"
 #include "integrators/stability/eigen_modes.hpp"
@@ -19,8 +30,8 @@
 namespace xshell {
 
 // Where the analysis is: the start of each stage ("eigen_modes",
-// "unloaded_equilibrium", "buckling") with iteration 0, and each Newton
-// iteration of the unloaded equilibrium.
+// "unloaded_equilibrium", "buckling", "buckling_check") with iteration 0,
+// and each Newton iteration of the unloaded equilibrium and of the check.
 struct StabilityProgress {
   std::string stage;
   long iteration = 0;
@@ -30,7 +41,11 @@ struct StabilityProgress {
 struct StabilityOptions {
   EigenModesOptions modes;        // how many eigenpairs (default 6)
   bool buckling = true;           // also the buckling load factor (one more Newton solve)
-  NewtonOptions unloaded_newton;  // for the unloaded equilibrium (its escape is never used)
+  NewtonOptions unloaded_newton;  // for the unloaded equilibrium and the check (no escape)
+  double check_margin = 0.1;      // the check's loads: (1 + this) lambda; 0: no check
+  // The average-angle constraint that holds the state (a deployment's end),
+  // or nullptr: the check keeps the average.
+  const AverageConstraint* held = nullptr;
   // The whole analysis' budget: the stage running when it passes stops with
   // the status "time_limit", and the later ones are skipped (the same).
   AnalysisDeadline deadline;
@@ -43,7 +58,12 @@ struct StabilityAnalysis {
   bool unloaded_converged = false;  // the unloaded equilibrium was found
   std::string unloaded_reason;
   BucklingResult buckling;  // status UnloadedUnstable also when not converged; TimeLimit
-                            // also when the deadline passed before it or in the Newton solve
+                            // also when the deadline passed before it or in a Newton solve
+  // The check's load factor (1 + check_margin) lambda, and whether the
+  // state stayed stable there (status Refuted, the estimate kept in
+  // buckling.load_factor).
+  std::optional<double> check_factor;
+  bool stable_at_check = false;
 };
 
 // problem: at its (loaded) equilibrium; its Hessian is reassembled.

@@ -91,6 +91,13 @@ void LinkageProblem::restore_loads() {
   ++version_;
 }
 
+void LinkageProblem::scale_loads(double factor) {
+  for (size_t s = 0; s < segment_forces_.size(); ++s)
+    segment_forces_[s] = factor * given_segment_forces_[s];
+  point_forces_ = factor * given_point_forces_;
+  ++version_;
+}
+
 double LinkageProblem::load_along(const Eigen::Vector3d& direction) const {
   double sum = 0.0;
   for (int s = 0; s < linkage_.num_segments(); ++s)

@@ -165,6 +165,9 @@ class LinkageProblem {
   // this one, integrators/deployment/deployment.hpp), and back as given.
   void remove_loads_along(const Eigen::Vector3d& direction);
   void restore_loads();
+  // The dead loads as given times factor (the buckling check,
+  // integrators/stability/stability_analysis.hpp).
+  void scale_loads(double factor);
   // Sum over the dead loads as given of f . direction (gravity, line loads
   // and point forces): negative when they push against it.
   double load_along(const Eigen::Vector3d& direction) const;

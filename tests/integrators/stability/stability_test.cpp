@@ -103,3 +103,37 @@ TEST_CASE("A tension load never buckles, without loads there is no buckling anal
 }
 
 }  // namespace xshell::test
+
+namespace xshell::test {
+
+TEST_CASE("A cantilever bent far: the linear estimate just above 1 is refuted, the column's kept") {
+  // E I = 1, L = 1, a square section: a transverse tip load P L^2 / EI = 5
+  // bends the cantilever far but never buckles it.
+  LinkageProblem bent = cantilever_beam(40, Eigen::Vector3d(0, 0, -5.0));
+  REQUIRE(relax(bent, 1e-8).converged());
+  StabilityOptions unchecked;
+  unchecked.check_margin = 0.0;
+  const StabilityAnalysis estimate = analyse_stability(bent, unchecked);
+  REQUIRE(estimate.buckling.status == BucklingStatus::Found);
+  MESSAGE("linearized load factor of the bent cantilever: " << estimate.buckling.load_factor);
+  CHECK(estimate.buckling.load_factor < 1.01);  // the interpolation's artifact
+  CHECK(!estimate.check_factor);
+  const StabilityAnalysis checked = analyse_stability(bent);
+  CHECK(checked.buckling.status == BucklingStatus::Refuted);
+  CHECK(std::string(buckling_status_name(checked.buckling.status)) == "refuted");
+  REQUIRE(checked.check_factor);
+  CHECK(*checked.check_factor == doctest::Approx(1.1 * estimate.buckling.load_factor));
+  CHECK(checked.stable_at_check);
+  // The Euler column's estimate survives the check: at 1.1 P_cr the
+  // straight column is a saddle.
+  const double p_cr = M_PI * M_PI / 4.0;
+  LinkageProblem column = cantilever_beam(60, Eigen::Vector3d(-0.5 * p_cr, 0, 0));
+  REQUIRE(relax(column, 1e-8).converged());
+  const StabilityAnalysis euler = analyse_stability(column);
+  CHECK(euler.buckling.status == BucklingStatus::Found);
+  REQUIRE(euler.check_factor);
+  CHECK(!euler.stable_at_check);
+  CHECK(euler.buckling.load_factor * 0.5 == doctest::Approx(1.0).epsilon(2e-3));
+}
+
+}  // namespace xshell::test
