@@ -20,7 +20,8 @@ bool has_loads(const LinkageProblem& problem) {
 enum class CheckOutcome { Stable, Unstable, TimeLimit };
 
 // Newton from the problem's state (a copy) under its loads times `factor`,
-// saddles kept (held at the average when options.held).
+// saddles kept (held at the average when options.held): Stable when it ends
+// at a stable equilibrium without passing an indefinite Hessian.
 CheckOutcome solve_scaled(const LinkageProblem& problem, double factor,
                           const StabilityOptions& options,
                           const std::function<void(const StabilityProgress&)>& report) {
@@ -32,8 +33,13 @@ CheckOutcome solve_scaled(const LinkageProblem& problem, double factor,
   std::atomic<bool> stop{false};
   NewtonCallbacks callbacks;
   callbacks.stop = &stop;
+  // An iterate with an indefinite Hessian (a shifted step) passed through
+  // unstable states: a snap to a remote stable equilibrium past a fold
+  // confirms the estimate rather than refuting it.
+  bool crossed_unstable = false;
   callbacks.on_iteration = [&](const NewtonReport& r) {
     if (r.iteration > 0) report({"buckling_check", r.iteration, r.energy, r.gradient_measure});
+    crossed_unstable = crossed_unstable || r.shifted;
     if (options.deadline.passed()) stop = true;
   };
   SolveResult result;
@@ -44,7 +50,8 @@ CheckOutcome solve_scaled(const LinkageProblem& problem, double factor,
     result = solve_newton(objective, newton, callbacks);
   }
   if (stop.load()) return CheckOutcome::TimeLimit;
-  return result.converged() && result.stable ? CheckOutcome::Stable : CheckOutcome::Unstable;
+  return result.converged() && result.stable && !crossed_unstable ? CheckOutcome::Stable
+                                                                  : CheckOutcome::Unstable;
 }
 
 }  // namespace

@@ -7,7 +7,8 @@
 // The linear estimate is then checked by one more solve: Newton from the
 // loaded state under the loads times (1 + check_margin) lambda, without
 // leaving saddles (held at the average opening angle when `held`). A
-// stable equilibrium there refutes it (status Refuted): the structure
+// stable equilibrium there, reached without an indefinite Hessian on the
+// way (a snap past a fold), refutes it (status Refuted): the structure
 // carries more than the estimate says, which happens when the loads move
 // it far (a soft deployed linkage under its own weight: the unloaded
 // equilibrium lies far away, and the interpolation between the two
