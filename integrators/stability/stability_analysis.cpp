@@ -17,41 +17,59 @@ bool has_loads(const LinkageProblem& problem) {
   return false;
 }
 
-enum class CheckOutcome { Stable, Unstable, TimeLimit };
+// One Newton solve of the analysis (stage `stage`), from the problem's
+// state, saddles kept (the unloaded equilibrium nearest the loaded state,
+// or the check's), held at the average when `held`; stopped at the
+// deadline.
+struct StageSolve {
+  SolveResult result;
+  bool stopped = false;  // by the deadline
+  bool shifted = false;  // some iterate's Hessian was indefinite
+};
 
-// Newton from the problem's state (a copy) under its loads times `factor`,
-// saddles kept (held at the average when options.held): Stable when it ends
-// at a stable equilibrium without passing an indefinite Hessian.
-CheckOutcome solve_scaled(const LinkageProblem& problem, double factor,
+StageSolve solve_in_stage(LinkageProblem& problem, const char* stage, const AverageConstraint* held,
                           const StabilityOptions& options,
                           const std::function<void(const StabilityProgress&)>& report) {
-  LinkageProblem scaled = problem;
-  scaled.scale_loads(factor);
-  LinkageObjective objective(scaled);
+  LinkageObjective objective(problem);
   NewtonOptions newton = options.unloaded_newton;
   newton.escape.enabled = false;
   std::atomic<bool> stop{false};
   NewtonCallbacks callbacks;
   callbacks.stop = &stop;
-  // An iterate with an indefinite Hessian (a shifted step) passed through
-  // unstable states: a snap to a remote stable equilibrium past a fold
-  // confirms the estimate rather than refuting it.
-  bool crossed_unstable = false;
+  StageSolve out;
   callbacks.on_iteration = [&](const NewtonReport& r) {
-    if (r.iteration > 0) report({"buckling_check", r.iteration, r.energy, r.gradient_measure});
-    crossed_unstable = crossed_unstable || r.shifted;
+    if (r.iteration > 0) report({stage, r.iteration, r.energy, r.gradient_measure});
+    out.shifted = out.shifted || r.shifted;
     if (options.deadline.passed()) stop = true;
   };
-  SolveResult result;
-  if (options.held) {
-    ConstrainedNewtonSolver solver(objective, *options.held, newton);
-    result = solver.solve(options.held->value(scaled.free_dofs()), callbacks);
+  if (held) {
+    ConstrainedNewtonSolver solver(objective, *held, newton);
+    out.result = solver.solve(held->value(problem.free_dofs()), callbacks);
   } else {
-    result = solve_newton(objective, newton, callbacks);
+    out.result = solve_newton(objective, newton, callbacks);
   }
-  if (stop.load()) return CheckOutcome::TimeLimit;
-  return result.converged() && result.stable && !crossed_unstable ? CheckOutcome::Stable
-                                                                  : CheckOutcome::Unstable;
+  out.stopped = stop.load();
+  return out;
+}
+
+// The check of a found estimate (the header): under the loads times
+// out.check_factor, a stable equilibrium reached without an indefinite
+// Hessian on the way refutes it (a snap past a fold to a remote stable
+// state passes through unstable ones, and confirms it).
+void check_estimate(const LinkageProblem& problem, const StabilityOptions& options,
+                    const std::function<void(const StabilityProgress&)>& report,
+                    StabilityAnalysis& out) {
+  report({"buckling_check", 0, std::nullopt, std::nullopt});
+  out.check_factor = (1.0 + options.check_margin) * out.buckling.load_factor;
+  LinkageProblem scaled = problem;
+  scaled.scale_loads(*out.check_factor);
+  const StageSolve check = solve_in_stage(scaled, "buckling_check", options.held, options, report);
+  if (check.stopped) {
+    out.buckling.status = BucklingStatus::TimeLimit;
+    return;
+  }
+  out.stable_at_check = check.result.converged() && check.result.stable && !check.shifted;
+  if (out.stable_at_check) out.buckling.status = BucklingStatus::Refuted;
 }
 
 }  // namespace
@@ -84,24 +102,15 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
   StaticsSetup unloaded_setup;
   if (problem.default_support_vertex() < 0) unloaded_setup.supports = problem.supports();
   LinkageProblem unloaded(problem.linkage(), unloaded_setup);
-  LinkageObjective objective(unloaded);
   // K_0 belongs to the unloaded equilibrium nearest the loaded state: where
   // that is a saddle it stays one (and the buckling is UnloadedUnstable),
   // never replaced by another equilibrium found past it.
-  NewtonOptions unloaded_newton = options.unloaded_newton;
-  unloaded_newton.escape.enabled = false;
-  std::atomic<bool> stop{false};
-  NewtonCallbacks callbacks;
-  callbacks.stop = &stop;
-  callbacks.on_iteration = [&](const NewtonReport& r) {
-    if (r.iteration > 0)
-      report({"unloaded_equilibrium", r.iteration, r.energy, r.gradient_measure});
-    if (options.deadline.passed()) stop = true;
-  };
-  const NewtonResult relaxed = solve_newton(objective, unloaded_newton, callbacks);
+  const StageSolve solved =
+      solve_in_stage(unloaded, "unloaded_equilibrium", nullptr, options, report);
+  const NewtonResult& relaxed = solved.result;
   out.unloaded_converged = relaxed.converged();
   out.unloaded_reason = relaxed.reason;
-  if (!out.unloaded_converged && stop.load()) {
+  if (!out.unloaded_converged && solved.stopped) {
     out.buckling.status = BucklingStatus::TimeLimit;
     return out;
   }
@@ -113,20 +122,8 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
   BucklingOptions buckling;
   buckling.deadline = options.deadline;
   out.buckling = linearized_buckling(unloaded.free_hessian(), loaded_hessian, buckling, &solver);
-  if (out.buckling.status != BucklingStatus::Found || !(options.check_margin > 0.0)) return out;
-  report({"buckling_check", 0, std::nullopt, std::nullopt});
-  out.check_factor = (1.0 + options.check_margin) * out.buckling.load_factor;
-  switch (solve_scaled(problem, *out.check_factor, options, report)) {
-    case CheckOutcome::Stable:
-      out.stable_at_check = true;
-      out.buckling.status = BucklingStatus::Refuted;
-      break;
-    case CheckOutcome::Unstable:
-      break;
-    case CheckOutcome::TimeLimit:
-      out.buckling.status = BucklingStatus::TimeLimit;
-      break;
-  }
+  if (out.buckling.status == BucklingStatus::Found && options.check_margin > 0.0)
+    check_estimate(problem, options, report, out);
   return out;
 }
 
