@@ -104,7 +104,7 @@ void write_engineering_files(const EngineeringSnapshot& snapshot, const Config& 
   const WriteOptions format{config.output.format == OutputFormat::Ascii ? VtkFormat::Ascii
                                                                         : VtkFormat::Binary};
   // Two at a time: the files are independent, and each one's time is
-  // mostly its compression (reactions and stresses take the longest).
+  // mostly its compression (stresses and modes, the largest, apart).
   std::future<void> other = std::async(std::launch::async, [&] {
     write_reactions_file(snapshot, directory / "reactions.vtp", format);
     write_joints_file(snapshot.joints, directory / "joint_forces.vtp", format);
