@@ -187,18 +187,13 @@ Eigen::VectorXd AverageConstraint::reduce_weights(const Eigen::VectorXd& w) cons
 
 AverageConstraint average_opening_angle_constraint(const LinkageProblem& problem) {
   const RodLinkage& linkage = problem.linkage();
-  const std::vector<int>& free = problem.free_indices();  // sorted reduced indices
-  auto free_position = [&](int reduced) {
-    const auto it = std::lower_bound(free.begin(), free.end(), reduced);
-    return it != free.end() && *it == reduced ? static_cast<int>(it - free.begin()) : -1;
-  };
   const int nv = static_cast<int>(linkage.graph().vertices.size());
   std::vector<int> member_of_vertex(nv, -1);  // position in `members`
   std::vector<int> members;
   double fixed_sum = 0.0;
   int root_vertex = -1;
   for (int j = 0; j < linkage.num_joints(); ++j) {
-    const int f = free_position(linkage.joint_dof_offset(j) + kAlpha);
+    const int f = problem.free_position(linkage.joint_dof_offset(j) + kAlpha);
     if (f < 0) {
       fixed_sum += linkage.joint(j).opening_angle();
       continue;

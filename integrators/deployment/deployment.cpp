@@ -164,9 +164,9 @@ class Deployer {
           Eigen::VectorXd predicted = q + change * t;
           if (options_.predictor == DeploymentPredictor::Quadratic)
             if (path_.size() == 2)
-              predicted += path_curvature_step(
-                  in_current_charts(path_[0], path_[0].frames, problem_.linkage(), rotations_),
-                  path_[1], t, change, comparable_);
+              predicted +=
+                  path_curvature_step(in_current_charts(path_[0], problem_.linkage(), rotations_),
+                                      path_[1], t, change, comparable_);
           constraint_->project(predicted, target);  // round-off only: a . t = 1
           try {
             problem_.set_free_dofs(predicted);

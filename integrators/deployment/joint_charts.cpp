@@ -9,20 +9,14 @@ namespace xshell {
 
 std::vector<FreeRotation> free_rotations(const LinkageProblem& problem) {
   const RodLinkage& linkage = problem.linkage();
-  const std::vector<int>& free = problem.free_indices();
   std::vector<FreeRotation> rotations;
   for (int j = 0; j < linkage.num_joints(); ++j) {
     if (linkage.joint(j).kind() != JointKind::Rotation) continue;
     FreeRotation r;
     r.joint = j;
-    bool all = true;
-    for (int k = 0; k < 3; ++k) {
-      const int full = linkage.joint_dof_offset(j) + kOmega + k;
-      const auto it = std::lower_bound(free.begin(), free.end(), full);
-      all = all && it != free.end() && *it == full;
-      if (all) r.free[k] = static_cast<int>(it - free.begin());
-    }
-    if (all) rotations.push_back(r);
+    for (int k = 0; k < 3; ++k)
+      r.free[k] = problem.free_position(linkage.joint_dof_offset(j) + kOmega + k);
+    if (*std::min_element(r.free.begin(), r.free.end()) >= 0) rotations.push_back(r);
   }
   return rotations;
 }
@@ -50,15 +44,14 @@ void scatter(const Eigen::Vector3d& w, const FreeRotation& r, Eigen::VectorXd& v
 
 }  // namespace
 
-PathPoint in_current_charts(const PathPoint& point,
-                            const std::vector<Eigen::Matrix3d>& point_frames,
-                            const RodLinkage& linkage, const std::vector<FreeRotation>& rotations) {
+PathPoint in_current_charts(const PathPoint& point, const RodLinkage& linkage,
+                            const std::vector<FreeRotation>& rotations) {
   PathPoint out = point;
   const bool tangent = point.tangent.size() == point.q.size();
   for (size_t i = 0; i < rotations.size(); ++i) {
     const FreeRotation& r = rotations[i];
     const Eigen::Matrix3d relative =
-        point_frames[i] * linkage.joint(r.joint).reference_frame().transpose();
+        point.frames[i] * linkage.joint(r.joint).reference_frame().transpose();
     const Eigen::AngleAxisd angle_axis(relative);
     const Eigen::Vector3d omega = angle_axis.angle() * angle_axis.axis();
     scatter(omega, r, out.q);

@@ -31,11 +31,10 @@ std::vector<FreeRotation> free_rotations(const LinkageProblem& problem);
 std::vector<Eigen::Matrix3d> joint_frames(const RodLinkage& linkage,
                                           const std::vector<FreeRotation>& rotations);
 
-// `point`, taken when the joints' frames were `point_frames`, with its
-// omegas (and its tangent's, when it has one) in the charts of `linkage`'s
-// joints now.
-PathPoint in_current_charts(const PathPoint& point,
-                            const std::vector<Eigen::Matrix3d>& point_frames,
-                            const RodLinkage& linkage, const std::vector<FreeRotation>& rotations);
+// `point` (with the frames its omegas were measured in, PathPoint::frames)
+// with its omegas (and its tangent's, when it has one) in the charts of
+// `linkage`'s joints now.
+PathPoint in_current_charts(const PathPoint& point, const RodLinkage& linkage,
+                            const std::vector<FreeRotation>& rotations);
 
 }  // namespace xshell

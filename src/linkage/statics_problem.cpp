@@ -85,12 +85,6 @@ void LinkageProblem::remove_loads_along(const Eigen::Vector3d& direction) {
     remove(point_forces_.segment<3>(linkage_.joint_dof_offset(j) + kPosition));
 }
 
-void LinkageProblem::restore_loads() {
-  segment_forces_ = given_segment_forces_;
-  point_forces_ = given_point_forces_;
-  ++version_;
-}
-
 void LinkageProblem::scale_loads(double factor) {
   for (size_t s = 0; s < segment_forces_.size(); ++s)
     segment_forces_[s] = factor * given_segment_forces_[s];

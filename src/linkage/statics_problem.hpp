@@ -110,6 +110,8 @@ class LinkageProblem {
 
   int num_free() const { return static_cast<int>(free_.size()); }
   const std::vector<int>& free_indices() const { return free_; }
+  // The position of a reduced unknown among the free ones, -1 when it is fixed.
+  int free_position(int reduced_index) const { return free_position_[reduced_index]; }
   Eigen::VectorXd free_dofs() const;
   void set_free_dofs(const Eigen::VectorXd& q);
   // The same, returning energy().total() there (computed in the same pass).
@@ -164,7 +166,7 @@ class LinkageProblem {
   // symmetric problem that the deployment's branch choice follows beside
   // this one, integrators/deployment/deployment.hpp), and back as given.
   void remove_loads_along(const Eigen::Vector3d& direction);
-  void restore_loads();
+  void restore_loads() { scale_loads(1.0); }
   // The dead loads as given times factor (the buckling check,
   // integrators/stability/stability_analysis.hpp).
   void scale_loads(double factor);

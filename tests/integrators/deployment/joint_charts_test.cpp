@@ -54,7 +54,7 @@ TEST_CASE(
   problem.rebase();
   std::vector<PathPoint> now;
   for (const PathPoint& p : points)
-    now.push_back(in_current_charts(p, p.frames, problem.linkage(), rotations));
+    now.push_back(in_current_charts(p, problem.linkage(), rotations));
   // Its omegas give the frames of s0 in the new charts.
   problem.set_free_dofs(now[0].q);
   const std::vector<Eigen::Matrix3d> again = joint_frames(problem.linkage(), rotations);
