@@ -11,6 +11,7 @@
 #include "io/fabrication_file.hpp"
 #include "io/vtk/linkage_snapshot.hpp"
 #include "io/vtk/vtk_series.hpp"
+#include "vtk_write_options.hpp"
 
 namespace xshell {
 
@@ -64,8 +65,9 @@ std::string flat_layout_obj(const LinkageProblem& flat, const Eigen::Vector3d& o
 
 void write_series(const DesignReport& report, const Config& config, const Eigen::Vector3d& origin) {
   SeriesOptions options;
-  options.format =
-      config.output.format == OutputFormat::Ascii ? VtkFormat::Ascii : VtkFormat::Binary;
+  const WriteOptions encoding = vtk_write_options(config.output);
+  options.format = encoding.format;
+  options.compression = encoding.compression;
   options.solids = config.output.solids != Toggle::Off;
   VtkSeries series(config.output.directory, options);
   series.write(linkage_snapshot(report.flat.linkage(), origin, 0.0), true);

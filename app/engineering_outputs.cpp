@@ -9,6 +9,7 @@
 #include "io/engineering_json.hpp"
 #include "io/vtk/engineering_files.hpp"
 #include "io/vtk/joints_file.hpp"
+#include "vtk_write_options.hpp"
 
 namespace xshell {
 
@@ -101,8 +102,7 @@ void write_engineering_results(LinkageProblem& problem, const Config& config,
 
 void write_engineering_files(const EngineeringSnapshot& snapshot, const Config& config,
                              const std::filesystem::path& directory) {
-  const WriteOptions format{config.output.format == OutputFormat::Ascii ? VtkFormat::Ascii
-                                                                        : VtkFormat::Binary};
+  const WriteOptions format = vtk_write_options(config.output);
   // Two at a time: the files are independent, and each one's time is
   // mostly its compression (stresses and modes, the largest, apart).
   std::future<void> other = std::async(std::launch::async, [&] {

@@ -6,6 +6,7 @@
 #include "io/state_file.hpp"
 #include "io/vtk/linkage_snapshot.hpp"
 #include "scoped_seconds.hpp"
+#include "vtk_write_options.hpp"
 
 namespace xshell {
 
@@ -16,8 +17,9 @@ RunOutputs::RunOutputs(const fs::path& dir, const Config& config, const LinkageP
     : dir_(dir), problem_(problem), origin_(origin), log_(log) {
   SeriesOptions options;
   options.every = config.output.every;
-  options.format =
-      config.output.format == OutputFormat::Ascii ? VtkFormat::Ascii : VtkFormat::Binary;
+  const WriteOptions encoding = vtk_write_options(config.output);
+  options.format = encoding.format;
+  options.compression = encoding.compression;
   const long edges = static_cast<long>(problem.linkage().num_segments()) * config.subdivisions;
   options.solids = config.output.solids == Toggle::On ||
                    (config.output.solids == Toggle::Auto && edges <= 20000);

@@ -46,11 +46,11 @@ void print_progress(const DynamicsReport& r, bool nested) {
 }
 
 ProgressSample progress_sample(const NewtonReport& r, const std::string& phase) {
-  return {phase, "newton", r.iteration, r.energy, r.gradient_measure};
+  return {phase, "newton", r.iteration, r.energy, r.gradient_measure, {}, {}};
 }
 
 ProgressSample progress_sample(const DynamicsReport& r, const std::string& phase) {
-  return {phase, "dynamics", r.step, r.energy, r.gradient_measure};
+  return {phase, "dynamics", r.step, r.energy, r.gradient_measure, {}, {}};
 }
 
 IterationRecord history_record(const NewtonReport& r, long iteration, double time) {
@@ -109,7 +109,8 @@ SolverRun run_kinetic_damping(const SolverOptions& solver, Objective& objective,
                                 r.step_norm, r.kinetic_energy, r.seconds});
     // Thousands of iterations: a progress line every 100, and at resets of
     // the first 100.
-    hooks.progress->sample({"solve", "kinetic-damping", r.iteration, r.energy, r.gradient_measure});
+    hooks.progress->sample(
+        {"solve", "kinetic-damping", r.iteration, r.energy, r.gradient_measure, {}, {}});
     if (hooks.progress->every_iteration() &&
         (r.iteration % 100 == 0 || (r.reset && r.iteration < 100)))
       std::fprintf(

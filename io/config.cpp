@@ -39,6 +39,9 @@ const Names<StartSetting> kStarts = {{StartSetting::SlowManifold, "slow_manifold
                                      {StartSetting::Rest, "rest"}};
 const Names<OutputFormat> kFormats = {{OutputFormat::Binary, "binary"},
                                       {OutputFormat::Ascii, "ascii"}};
+const Names<OutputCompression> kCompressions = {{OutputCompression::Lz4, "lz4"},
+                                                {OutputCompression::Zlib, "zlib"},
+                                                {OutputCompression::None, "none"}};
 const Names<Fixed> kFixed = {{Fixed::Position, "position"},
                              {Fixed::X, "x"},
                              {Fixed::Y, "y"},
@@ -253,7 +256,7 @@ OutputOptions read_output(const JsonField* f, const std::string& base_dir) {
   OutputOptions o;
   o.directory = resolve("out", base_dir);
   if (!f) return o;
-  f->check_keys({"directory", "every", "max_steps", "format", "solids", "progress"});
+  f->check_keys({"directory", "every", "max_steps", "format", "compression", "solids", "progress"});
   if (auto dir = f->find("directory")) o.directory = file_path(*dir, base_dir);
   if (auto every = f->find("every")) o.every = at_least(*every, 1);
   if (auto max_steps = f->find("max_steps")) {
@@ -261,6 +264,7 @@ OutputOptions read_output(const JsonField* f, const std::string& base_dir) {
     if (o.max_steps == 1) max_steps->fail("must be 0 (no limit) or at least 2, got 1");
   }
   if (auto format = f->find("format")) o.format = format->choice(kFormats);
+  if (auto compression = f->find("compression")) o.compression = compression->choice(kCompressions);
   if (auto solids = f->find("solids")) o.solids = toggle(*solids);
   if (auto progress = f->find("progress")) o.progress = toggle(*progress);
   return o;
@@ -493,6 +497,7 @@ nlohmann::json to_json(const Config& c) {
         {"every", c.output.every},
         {"max_steps", c.output.max_steps},
         {"format", name_of(c.output.format, kFormats)},
+        {"compression", name_of(c.output.compression, kCompressions)},
         {"solids", toggle_json(c.output.solids)},
         {"progress", toggle_json(c.output.progress)}}},
       {"analysis",

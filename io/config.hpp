@@ -71,6 +71,8 @@ enum class StartSetting {
 
 // "output.format" of the VTK files.
 enum class OutputFormat { Binary /* "binary" */, Ascii /* "ascii" */ };
+// "output.compression" of the binary VTK files.
+enum class OutputCompression { Lz4 /* "lz4" */, Zlib /* "zlib" */, None /* "none" */ };
 
 // A switch that may be left to the program: true, false or "auto".
 enum class Toggle { Off /* false */, On /* true */, Auto /* "auto" */ };
@@ -220,7 +222,8 @@ struct OutputOptions {
   int every = 1;          // "every", >= 1, default 1: write every n-th iteration or step
   int max_steps = 1000;   // "max_steps", 0 (no limit) or >= 2, default 1000: VTK steps kept;
                           // beyond, every other is removed and `every` doubles
-  OutputFormat format = OutputFormat::Binary;  // "format", default "binary"
+  OutputFormat format = OutputFormat::Binary;              // "format", default "binary"
+  OutputCompression compression = OutputCompression::Lz4;  // "compression", default "lz4"
   Toggle solids = Toggle::Auto;    // "solids", default "auto": also write the rods as solids
   Toggle progress = Toggle::Auto;  // "progress", default "auto": a progress display (auto:
                                    // when the output is a terminal)

@@ -55,7 +55,7 @@ void VtkSeries::write_now(const Snapshot& snapshot) {
   if (closed_) throw std::logic_error("VTK series: write() after close()");
   validate(snapshot);
 
-  const WriteOptions format{options_.format};
+  const WriteOptions format{options_.format, options_.compression};
   std::vector<PvdEntry> step;  // the parts written so far
   auto write_part = [&](VtkPart part, auto&& write_file) {
     const std::string file = step_file_name(part, steps_written_);

@@ -37,6 +37,7 @@ struct SeriesOptions {
   bool solids = true;   // also write solids_*.vtp (larger files)
   SolidsOptions solid;  // how solids are swept
   int max_steps = 0;    // thin the series when it holds this many steps (>= 2; 0: never)
+  VtkCompression compression = VtkCompression::Lz4;  // of the binary format
 };
 
 class VtkSeries {

@@ -3,6 +3,7 @@
 #include <spawn.h>
 #include <unistd.h>
 
+#include <map>
 #include <thread>
 
 #include "command_runner.hpp"
@@ -51,6 +52,43 @@ TEST_CASE("relax: the sample runs and writes summary.json, state.json and the VT
   // The supported corners did not move; the loaded middle sagged.
   CHECK(s["vertices"][1][2].get<double>() == doctest::Approx(0.0).epsilon(1e-12));
   CHECK(s["vertices"][13][2].get<double>() < -1e-3);
+}
+
+// The compressor attribute of every .vtp file in `dir` ("" for none), one
+// entry per distinct value, with how many files carry it.
+std::map<std::string, int> compressors(const fs::path& dir) {
+  std::map<std::string, int> found;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().extension() != ".vtp") continue;
+    const std::string text = read_text(entry.path());
+    const std::string key = "compressor=\"";
+    const size_t start = text.find(key);
+    const size_t begin = start == std::string::npos ? start : start + key.size();
+    ++found[start == std::string::npos ? "" : text.substr(begin, text.find('"', begin) - begin)];
+  }
+  return found;
+}
+
+TEST_CASE("relax: output.compression chooses the compressor of every VTK file, LZ4 by default") {
+  const fs::path dir = temporary_directory("compression");
+  const std::string config = sample_config(dir / "lz4");
+  std::string zlib = sample_config(dir / "zlib");
+  const std::string end = "zlib\"}";
+  zlib.replace(zlib.find(end), end.size(), "zlib\", \"compression\": \"zlib\"}");
+  write_text(dir / "lz4.json", config);
+  write_text(dir / "zlib.json", zlib);
+  REQUIRE(run_xshell("relax lz4.json", dir).status == 0);
+  REQUIRE(run_xshell("relax zlib.json", dir).status == 0);
+  const auto lz4_files = compressors(dir / "lz4");
+  const auto zlib_files = compressors(dir / "zlib");
+  REQUIRE(lz4_files.size() == 1);
+  REQUIRE(zlib_files.size() == 1);
+  CHECK(lz4_files.begin()->first == "vtkLZ4DataCompressor");
+  CHECK(zlib_files.begin()->first == "vtkZLibDataCompressor");
+  CHECK(lz4_files.begin()->second > 8);  // the series and the engineering files
+  CHECK(zlib_files.begin()->second == lz4_files.begin()->second);
+  CHECK(read_json(dir / "zlib" / "summary.json")["configuration"]["output"]["compression"] ==
+        "zlib");
 }
 
 TEST_CASE("relax --init from a written state reproduces it without iterating") {

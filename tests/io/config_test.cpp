@@ -32,7 +32,8 @@ const json kFull = json::parse(R"({
   "solver": {"method": "kinetic-damping", "gradient_tolerance": 1e-8, "max_iterations": 50,
              "mass": "fictitious", "damping": 0.5, "first_order": true, "start": "rest", "max_steps": 700,
              "line_search": "kinsol", "escape_saddles": false, "buckling_direction": [0, 0, -2]},
-  "output": {"directory": "/tmp/results", "every": 5, "format": "ascii", "solids": true,
+  "output": {"directory": "/tmp/results", "every": 5, "format": "ascii", "compression": "zlib",
+             "solids": true,
              "progress": false},
   "deployment": {"joint_angles": [{"vertex": 2, "angle": 1.5}, {"vertex": 3, "angle": 2}],
                  "steps": 7, "largest_step": 0.3}
@@ -76,6 +77,7 @@ TEST_CASE("config: defaults are filled in") {
   CHECK(c.output.directory == "/runs/a/out");
   CHECK(c.output.every == 1);
   CHECK(c.output.format == OutputFormat::Binary);
+  CHECK(c.output.compression == OutputCompression::Lz4);
   CHECK(c.output.solids == Toggle::Auto);
   CHECK(c.output.progress == Toggle::Auto);
   CHECK_FALSE(c.deployment.has_value());
@@ -123,6 +125,7 @@ TEST_CASE("config: every key is read") {
   CHECK(c.output.directory == "/tmp/results");
   CHECK(c.output.every == 5);
   CHECK(c.output.format == OutputFormat::Ascii);
+  CHECK(c.output.compression == OutputCompression::Zlib);
   CHECK(c.output.solids == Toggle::On);
   CHECK(c.output.progress == Toggle::Off);
   REQUIRE(c.deployment.has_value());
@@ -341,6 +344,8 @@ TEST_CASE("config: bad enum strings list the valid choices") {
   check_message(rejection(with("/material/cross_section/shape", "circle")),
                 {"material.cross_section.shape", "\"rectangle\", \"ellipse\""});
   check_message(rejection(with("/output", {{"format", "xml"}})), {"output.format", "\"binary\""});
+  check_message(rejection(with("/output", {{"compression", "gzip"}})),
+                {"output.compression", "\"lz4\", \"zlib\", \"none\""});
   check_message(rejection(with("/solver", {{"mass", "real"}})), {"solver.mass", "\"fictitious\""});
   check_message(rejection(with("/solver", {{"start", "still"}})),
                 {"solver.start", "\"slow_manifold\", \"rest\""});

@@ -1,5 +1,6 @@
-// Writes the rods, frames and joints files of the demo snapshot in both
-// encodings and reads them back with VTK's own reader.
+// Writes the rods, frames and joints files of the demo snapshot in every
+// encoding (binary with each compressor, ASCII) and reads them back with
+// VTK's own reader.
 #include <doctest/doctest.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -20,22 +21,33 @@ namespace {
 constexpr double kTol = 1e-12;
 
 struct Format {
-  VtkFormat format;
+  WriteOptions options;
   const char* name;
+  const char* compressor;  // the header's compressor attribute, "" for none
 };
-const Format kFormats[] = {{VtkFormat::Binary, "binary"}, {VtkFormat::Ascii, "ascii"}};
+const Format kFormats[] = {
+    {{VtkFormat::Binary, VtkCompression::Lz4}, "lz4", "vtkLZ4DataCompressor"},
+    {{VtkFormat::Binary, VtkCompression::Zlib}, "zlib", "vtkZLibDataCompressor"},
+    {{VtkFormat::Binary, VtkCompression::None}, "raw", ""},
+    {{VtkFormat::Ascii}, "ascii", ""}};
 
-// The encoding the header announces: appended zlib data, or inline ASCII.
-void check_encoding(const std::filesystem::path& path, VtkFormat format, int& checks) {
+// The header's compressor attribute, "" without one.
+std::string compressor_of(const std::string& head) {
+  const std::string key = "compressor=\"";
+  const size_t start = head.find(key);
+  if (start == std::string::npos) return "";
+  const size_t begin = start + key.size();
+  return head.substr(begin, head.find('"', begin) - begin);
+}
+
+// The encoding the header announces: appended data and its compressor, or
+// inline ASCII.
+void check_encoding(const std::filesystem::path& path, const Format& format, int& checks) {
   const std::string head = file_head(path);
-  if (format == VtkFormat::Binary) {
-    XSHELL_COUNTED_CHECK(checks,
-                         head.find("compressor=\"vtkZLibDataCompressor\"") != std::string::npos);
-    XSHELL_COUNTED_CHECK(checks, head.find("format=\"appended\"") != std::string::npos);
-  } else {
-    XSHELL_COUNTED_CHECK(checks, head.find("compressor=") == std::string::npos);
-    XSHELL_COUNTED_CHECK(checks, head.find("format=\"ascii\"") != std::string::npos);
-  }
+  XSHELL_COUNTED_CHECK(checks, compressor_of(head) == format.compressor);
+  const bool binary = format.options.format == VtkFormat::Binary;
+  XSHELL_COUNTED_CHECK(
+      checks, head.find(binary ? "format=\"appended\"" : "format=\"ascii\"") != std::string::npos);
 }
 
 }  // namespace
@@ -46,9 +58,9 @@ TEST_CASE("rods file: one polyline per rod with per-node data") {
     CAPTURE(format.name);
     ScratchDir dir("rods");
     const auto path = dir.path() / "rods.vtp";
-    write_rods_file(snapshot, path, {format.format});
+    write_rods_file(snapshot, path, format.options);
     int checks = 0;
-    check_encoding(path, format.format, checks);
+    check_encoding(path, format, checks);
 
     const auto data = read_polydata(path);
     REQUIRE(data->GetNumberOfPoints() == 9 + 7);
@@ -100,9 +112,9 @@ TEST_CASE("frames file: unit orthogonal material frames at edge midpoints") {
     CAPTURE(format.name);
     ScratchDir dir("frames");
     const auto path = dir.path() / "frames.vtp";
-    write_frames_file(snapshot, path, {format.format});
+    write_frames_file(snapshot, path, format.options);
     int checks = 0;
-    check_encoding(path, format.format, checks);
+    check_encoding(path, format, checks);
 
     const auto data = read_polydata(path);
     REQUIRE(data->GetNumberOfPoints() == 8 + 6);
@@ -158,9 +170,9 @@ TEST_CASE("joints file: one vertex per joint with the snapshot's normals") {
     CAPTURE(format.name);
     ScratchDir dir("joints");
     const auto path = dir.path() / "joints.vtp";
-    write_joints_file(snapshot, path, {format.format});
+    write_joints_file(snapshot, path, format.options);
     int checks = 0;
-    check_encoding(path, format.format, checks);
+    check_encoding(path, format, checks);
 
     const auto data = read_polydata(path);
     REQUIRE(data->GetNumberOfPoints() == 5);
