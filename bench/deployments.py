@@ -14,6 +14,9 @@ the engineering results, the summary), in its own process:
                flat at 3.01 rad, near pi); the relaxation runs once per
                design, untimed, and the deployment starts from its
                state.json
+  manta_ray_relax
+               a plain relaxation of manta_ray from flat, no deployment
+               (its "steps" are empty; with --gravity, loaded too)
 
 Straight laths, millimetres, E = 20000 MPa, rectangle 10 x 7 mm (the
 designs' own sections are listed in ../shared/data/elasticrods/README.txt;
@@ -54,14 +57,15 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
-# name: (file, target): target "absolute" angles in degrees, else a raise
-# of the relaxed state's average angle in radians.
+# name: (file, target): target "degrees" an absolute angle, "open" a raise
+# of the relaxed state's average angle in radians, "relax" no deployment.
 DESIGNS = {
     "manta_ray": ("manta_ray_5ca2f7ab.obj", ("degrees", 93.0)),
     "darth_vader": ("darth_vader_fig5_1693d9a2.obj", ("degrees", 115.0)),
     "scary_face": ("scary_face_8f39dd30.obj", ("open", 0.5)),
     "hourglass": ("hourglass_912c32dc.obj", ("open", 0.5)),
     "large": ("large_6d35a972.obj", ("open", 0.5)),
+    "manta_ray_relax": ("manta_ray_5ca2f7ab.obj", ("relax", None)),
 }
 
 COLUMNS = ["design", "steps", "iterations", "factorizations", "iterations_per_step",
@@ -120,6 +124,10 @@ def prepare(xshell, data, name, subdivisions, steps, root, gravity=None, density
     os.makedirs(folder, exist_ok=True)
     path = os.path.join(data, obj)
     args = ["relax", "deploy.json"]
+    if kind == "relax":
+        with open(os.path.join(folder, "deploy.json"), "w") as f:
+            json.dump(config(path, subdivisions, None, gravity, density), f)
+        return folder, args + ["--progress", "json"]
     if kind == "degrees":
         target = math.radians(value)
     else:
@@ -162,8 +170,10 @@ def measure(xshell, folder, args):
     row["eigenvalues"] = analysis.get("eigenvalues")
     row["buckling"] = analysis.get("buckling")
     row["load_factor"] = s.get("buckling_load_factor")
-    with open(os.path.join(folder, "out", "deployment.csv")) as f:
-        table = list(csv.DictReader(f))
+    table = []
+    if os.path.exists(os.path.join(folder, "out", "deployment.csv")):
+        with open(os.path.join(folder, "out", "deployment.csv")) as f:
+            table = list(csv.DictReader(f))
     row["unstable_steps"] = sum(1 for t in table if t["stable"] != "true")
     if table and "factorizations" in table[0]:
         row["factorizations"] = sum(int(t["factorizations"]) for t in table)
