@@ -72,6 +72,22 @@ void check_estimate(const LinkageProblem& problem, const StabilityOptions& optio
   if (out.stable_at_check) out.buckling.status = BucklingStatus::Refuted;
 }
 
+// The linearized buckling of K_0 and K_L, on the constraint's null space
+// (B^T K B, the mode carried back by B) when the state is held: there the
+// actuation removes the opening mode, which the loads would otherwise
+// soften first.
+BucklingResult held_buckling(const Eigen::SparseMatrix<double>& K0,
+                             const Eigen::SparseMatrix<double>& KL, const StabilityOptions& options,
+                             CholeskySolver& solver) {
+  BucklingOptions buckling;
+  buckling.deadline = options.deadline;
+  if (!options.held) return linearized_buckling(K0, KL, buckling, &solver);
+  const AverageConstraint& held = *options.held;
+  BucklingResult out = linearized_buckling(held.reduce(K0), held.reduce(KL), buckling, &solver);
+  if (out.status == BucklingStatus::Found) out.mode = held.expand(out.mode);
+  return out;
+}
+
 }  // namespace
 
 StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOptions& options) {
@@ -102,26 +118,30 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
   StaticsSetup unloaded_setup;
   if (problem.default_support_vertex() < 0) unloaded_setup.supports = problem.supports();
   LinkageProblem unloaded(problem.linkage(), unloaded_setup);
+  if (unloaded.num_free() != problem.num_free()) {
+    out.buckling.status = BucklingStatus::UnloadedUnstable;
+    return out;
+  }
   // K_0 belongs to the unloaded equilibrium nearest the loaded state: where
   // that is a saddle it stays one (and the buckling is UnloadedUnstable),
-  // never replaced by another equilibrium found past it.
+  // never replaced by another equilibrium found past it. A held state
+  // stays held: the actuation that keeps a deployed linkage open does so
+  // with and without the loads.
   const StageSolve solved =
-      solve_in_stage(unloaded, "unloaded_equilibrium", nullptr, options, report);
-  const NewtonResult& relaxed = solved.result;
+      solve_in_stage(unloaded, "unloaded_equilibrium", options.held, options, report);
+  const SolveResult& relaxed = solved.result;
   out.unloaded_converged = relaxed.converged();
   out.unloaded_reason = relaxed.reason;
   if (!out.unloaded_converged && solved.stopped) {
     out.buckling.status = BucklingStatus::TimeLimit;
     return out;
   }
-  if (!out.unloaded_converged || unloaded.num_free() != problem.num_free()) {
+  if (!out.unloaded_converged) {
     out.buckling.status = BucklingStatus::UnloadedUnstable;
     return out;
   }
   report({"buckling", 0, std::nullopt, std::nullopt});
-  BucklingOptions buckling;
-  buckling.deadline = options.deadline;
-  out.buckling = linearized_buckling(unloaded.free_hessian(), loaded_hessian, buckling, &solver);
+  out.buckling = held_buckling(unloaded.free_hessian(), loaded_hessian, options, solver);
   if (out.buckling.status == BucklingStatus::Found && options.check_margin > 0.0)
     check_estimate(problem, options, report, out);
   return out;

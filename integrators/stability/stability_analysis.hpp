@@ -2,7 +2,12 @@
 // free Hessian (mass-weighted, eigen_modes.hpp) and the linearized buckling
 // load factor of the current loads (buckling.hpp), whose unloaded stiffness
 // K_0 is the free Hessian at the equilibrium of the same linkage with the
-// same supports and no loads, found by Newton from the loaded state.
+// same supports and no loads, found by Newton from the loaded state. A
+// state held at its average opening angle (`held`: a deployment's end) is
+// held there too, and the buckling is that of the held linkage: K_0 and K_L
+// reduced to the constraint's null space (B^T K B, average_constraint.hpp),
+// the mode carried back by B. Without the hold, a deployed linkage's
+// unloaded equilibrium would be the one it springs back to, far away.
 //
 // The linear estimate is then checked by one more solve: Newton from the
 // loaded state under the loads times (1 + check_margin) lambda, without

@@ -1,9 +1,12 @@
 #include <doctest/doctest.h>
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Dense>
 #include <cmath>
 
 #include "integrators/beam_fixtures.hpp"
+#include "integrators/common/linkage_objective.hpp"
+#include "integrators/deployment/constrained_newton.hpp"
+#include "integrators/deployment/deployment_fixtures.hpp"
 #include "integrators/stability/stability_analysis.hpp"
 
 namespace xshell::test {
@@ -134,6 +137,81 @@ TEST_CASE("A cantilever bent far: the linear estimate just above 1 is refuted, t
   REQUIRE(euler.check_factor);
   CHECK(!euler.stable_at_check);
   CHECK(euler.buckling.load_factor * 0.5 == doctest::Approx(1.0).epsilon(2e-3));
+}
+
+}  // namespace xshell::test
+
+namespace xshell::test {
+
+namespace {
+
+// An orthonormal basis (n x (n-1)) of the plane a . q = 0, dense.
+Eigen::MatrixXd dense_null_space(const Eigen::VectorXd& a) {
+  const Eigen::MatrixXd column = a;
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(column);
+  const Eigen::MatrixXd Q = qr.householderQ();
+  return Q.rightCols(a.size() - 1);
+}
+
+}  // namespace
+
+TEST_CASE(
+    "A held deployed state: the unloaded equilibrium is held too, the buckling is the held "
+    "linkage's") {
+  // The 3 x 3 dome opened by 0.15 rad and held there, its corners pushed
+  // towards the centre.
+  const double push = 40.0;
+  StaticsSetup setup;
+  setup.supports = {{4, {SupportDof::Position, SupportDof::Orientation}}};
+  const RodLinkage drawn(dome_grid(3, 0.8), lath_material(RestShape::Input));
+  for (int corner : {0, 2, 6, 8}) {
+    Eigen::Vector3d inward = -drawn.graph().vertices[corner];
+    inward.z() = 0.0;
+    setup.forces.push_back({corner, push * inward.normalized()});
+  }
+  LinkageProblem loaded(drawn, setup);
+  const AverageConstraint held = average_opening_angle_constraint(loaded);
+  const double opened = held.value(loaded.free_dofs()) + 0.15;
+  {
+    LinkageObjective objective(loaded);
+    ConstrainedNewtonSolver solver(objective, held);
+    REQUIRE(solver.solve(opened).converged());
+  }
+  StabilityOptions options;
+  options.held = &held;
+  options.check_margin = 0.0;
+  const StabilityAnalysis a = analyse_stability(loaded, options);
+  REQUIRE(a.unloaded_converged);
+  REQUIRE(a.buckling.status == BucklingStatus::Found);
+  MESSAGE("held load factor: " << a.buckling.load_factor);
+  // The same, independently: the unloaded equilibrium at the same average,
+  // both Hessians on a dense orthonormal basis of the constraint's plane.
+  StaticsSetup no_loads;
+  no_loads.supports = setup.supports;
+  LinkageProblem unloaded(loaded.linkage(), no_loads);
+  {
+    LinkageObjective objective(unloaded);
+    ConstrainedNewtonSolver solver(objective, held);
+    REQUIRE(solver.solve(opened).converged());
+  }
+  CHECK((unloaded.free_dofs() - loaded.free_dofs()).norm() > 1e-6);  // the loads moved it
+  const Eigen::MatrixXd Z = dense_null_space(held.coefficients());
+  const Eigen::MatrixXd K0 = Z.transpose() * Eigen::MatrixXd(unloaded.free_hessian()) * Z;
+  const Eigen::MatrixXd KL = Z.transpose() * Eigen::MatrixXd(loaded.free_hessian()) * Z;
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> dense(K0 - KL, K0);
+  REQUIRE(dense.info() == Eigen::Success);
+  const double nu = dense.eigenvalues().maxCoeff();
+  REQUIRE(nu > 0.0);
+  CHECK(a.buckling.load_factor == doctest::Approx(1.0 / nu).epsilon(1e-6));
+  // The mode keeps the average, and is K_0-normalized.
+  const Eigen::VectorXd& phi = a.buckling.mode;
+  CHECK(std::abs(held.coefficients().dot(phi)) < 1e-10 * phi.norm());
+  CHECK(phi.dot(unloaded.free_hessian() * phi) == doctest::Approx(1.0).epsilon(1e-8));
+  // Without the hold, the opening mode (which the corners' push softens) is
+  // part of the estimate.
+  options.held = nullptr;
+  const StabilityAnalysis free = analyse_stability(loaded, options);
+  CHECK(free.buckling.load_factor != doctest::Approx(a.buckling.load_factor).epsilon(1e-3));
 }
 
 }  // namespace xshell::test
