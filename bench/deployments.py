@@ -71,8 +71,8 @@ DESIGNS = {
 COLUMNS = ["design", "steps", "iterations", "factorizations", "iterations_per_step",
            "factorizations_per_step", "wall_s", "load_s", "setup_s", "solve_s", "analysis_s",
            "output_s", "analysis_share", "eigen_modes_s", "unloaded_equilibrium_s",
-           "buckling_s", "eigenvalues", "buckling", "load_factor", "peak_mb", "energy",
-           "unstable_steps", "status", "reps"]
+           "buckling_s", "buckling_check_s", "eigenvalues", "buckling", "load_factor", "peak_mb",
+           "energy", "unstable_steps", "status", "reps"]
 
 # The analysis' stages, in their order (README, "Progress").
 STAGES = ["eigen_modes", "unloaded_equilibrium", "buckling", "buckling_check"]
