@@ -97,7 +97,7 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
   StabilityAnalysis out;
   const Eigen::SparseMatrix<double> loaded_hessian = problem.free_hessian();
   // One CHOLMOD solver for H - sigma M and K_0: the same pattern, one
-  // symbolic analysis.
+  // symbolic analysis (a held state's reduced B^T K B has its own).
   CholeskySolver solver;
   report({"eigen_modes", 0, std::nullopt, std::nullopt});
   EigenModesOptions modes = options.modes;
