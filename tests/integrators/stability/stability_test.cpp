@@ -139,10 +139,6 @@ TEST_CASE("A cantilever bent far: the linear estimate just above 1 is refuted, t
   CHECK(euler.buckling.load_factor * 0.5 == doctest::Approx(1.0).epsilon(2e-3));
 }
 
-}  // namespace xshell::test
-
-namespace xshell::test {
-
 namespace {
 
 // An orthonormal basis (n x (n-1)) of the plane a . q = 0, dense.
