@@ -47,6 +47,10 @@ struct CholeskySolver::Impl {
 
   void analyze(const Eigen::SparseMatrix<double>& A);
   void fill(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd* shift);
+  // `system` (CHOLMOD_A, _L, _Lt) solved for the right-hand side `permuted`,
+  // the solution copied to `out` (may be permuted.data()).
+  void solve_permuted(int system, double* out);
+  void require_factorization() const;
 };
 
 namespace {
@@ -210,21 +214,50 @@ FactorizationStatus CholeskySolver::factorize(const Eigen::SparseMatrix<double>&
 
 bool CholeskySolver::factorized() const { return impl_->ready; }
 
-void CholeskySolver::solve(const double* b, double* x) {
-  Impl& s = *impl_;
-  if (!s.ready) throw std::logic_error("CholeskySolver::solve without a successful factorization");
-  const Eigen::Index n = s.lower.cols();
-  for (Eigen::Index k = 0; k < n; ++k) s.permuted[k] = b[s.permutation[static_cast<size_t>(k)]];
-  cholmod_dense B = dense_view(s.permuted);
+void CholeskySolver::Impl::require_factorization() const {
+  if (!ready) throw std::logic_error("CholeskySolver::solve without a successful factorization");
+  // The halves take the factor for L of L L^T (cholmod_handles.cpp asks
+  // for supernodal LL^T only), not the unit L of an LDL^T.
+  if (!factor.get()->is_ll) throw std::logic_error("CholeskySolver: the factor is not LL^T");
+}
+
+void CholeskySolver::Impl::solve_permuted(int system, double* out) {
+  cholmod_dense B = dense_view(permuted);
   {
     const CholmodThreads threads;
-    if (!cholmod_solve2(CHOLMOD_A, s.factor.get(), &B, nullptr, s.x.handle(), nullptr, s.y.handle(),
-                        s.e.handle(), s.common->get()))
+    if (!cholmod_solve2(system, factor.get(), &B, nullptr, x.handle(), nullptr, y.handle(),
+                        e.handle(), common->get()))
       throw std::runtime_error("cholmod_solve2 failed");
   }
-  const double* solution = static_cast<const double*>(s.x.get()->x);
-  for (Eigen::Index k = 0; k < n; ++k) x[s.permutation[static_cast<size_t>(k)]] = solution[k];
+  const double* solution = static_cast<const double*>(x.get()->x);
+  std::copy(solution, solution + permuted.size(), out);
+}
+
+void CholeskySolver::solve(const double* b, double* x) {
+  Impl& s = *impl_;
+  s.require_factorization();
+  const Eigen::Index n = s.lower.cols();
+  for (Eigen::Index k = 0; k < n; ++k) s.permuted[k] = b[s.permutation[static_cast<size_t>(k)]];
+  s.solve_permuted(CHOLMOD_A, s.permuted.data());
+  for (Eigen::Index k = 0; k < n; ++k) x[s.permutation[static_cast<size_t>(k)]] = s.permuted[k];
   ++s.stats.solves;
+}
+
+void CholeskySolver::solve_lower(const double* b, double* y) {
+  Impl& s = *impl_;
+  s.require_factorization();
+  const Eigen::Index n = s.lower.cols();
+  for (Eigen::Index k = 0; k < n; ++k) s.permuted[k] = b[s.permutation[static_cast<size_t>(k)]];
+  s.solve_permuted(CHOLMOD_L, y);
+}
+
+void CholeskySolver::solve_upper(const double* y, double* x) {
+  Impl& s = *impl_;
+  s.require_factorization();
+  const Eigen::Index n = s.lower.cols();
+  std::copy(y, y + n, s.permuted.data());
+  s.solve_permuted(CHOLMOD_Lt, s.permuted.data());
+  for (Eigen::Index k = 0; k < n; ++k) x[s.permutation[static_cast<size_t>(k)]] = s.permuted[k];
 }
 
 Eigen::VectorXd CholeskySolver::solve(const Eigen::VectorXd& b) {

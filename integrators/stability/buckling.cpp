@@ -1,10 +1,10 @@
 #include "integrators/stability/buckling.hpp"
 
-#include <Spectra/SymGEigsShiftSolver.h>
-#include <Spectra/SymGEigsSolver.h>
+#include <Spectra/SymEigsSolver.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "integrators/linear_algebra/cholesky_solver.hpp"
@@ -17,110 +17,87 @@ namespace {
 // to about that: 1e6 leaves four orders of magnitude above round-off.
 constexpr double kLargestLoadFactor = 1e6;
 
-// y = A x for a sparse symmetric A (both triangles stored).
-class SparseProduct {
+// y = G^-1 P S P^T G^-T x, with P A P^T = G G^T factorized in `solver`
+// (CholeskySolver::solve_lower/upper): the standard symmetric form of
+// S phi = mu A phi, whose eigenvectors x give phi = P^T G^-T x. Lanczos
+// then orthogonalizes in the plain inner product; in the generalized
+// (B-inner product) modes every reorthogonalization pass costs a product
+// with the stiffness, whose condition makes each pass fail its round-off
+// test: 13 products per operation, most of the buckling's time on
+// manta_ray (272 products for 21 operations).
+class StandardForm {
  public:
   using Scalar = double;
-  SparseProduct(const Eigen::SparseMatrix<double>& A, const AnalysisDeadline& deadline)
-      : A_(A), deadline_(deadline) {}
-  Eigen::Index rows() const { return A_.rows(); }
-  Eigen::Index cols() const { return A_.cols(); }
-  void perform_op(const double* x_in, double* y_out) const {
-    Eigen::Map<const Eigen::VectorXd> x(x_in, rows());
-    Eigen::Map<Eigen::VectorXd> y(y_out, rows());
-    deadline_.check();
-    y.noalias() = A_ * x;
-  }
-
- private:
-  const Eigen::SparseMatrix<double>& A_;
-  const AnalysisDeadline& deadline_;
-};
-
-// B = K_0: its product and, through a CHOLMOD factorization, its inverse.
-class FactorizedMatrix {
- public:
-  using Scalar = double;
-  FactorizedMatrix(const Eigen::SparseMatrix<double>& B, CholeskySolver& solver)
-      : B_(B), solver_(solver) {}
-  Eigen::Index rows() const { return B_.rows(); }
-  Eigen::Index cols() const { return B_.cols(); }
-  void perform_op(const double* x_in, double* y_out) const {
-    Eigen::Map<const Eigen::VectorXd> x(x_in, rows());
-    Eigen::Map<Eigen::VectorXd> y(y_out, rows());
-    y.noalias() = B_ * x;
-  }
-  void solve(const double* x_in, double* y_out) const { solver_.solve(x_in, y_out); }
-
- private:
-  const Eigen::SparseMatrix<double>& B_;
-  CholeskySolver& solver_;
-};
-
-// (K0 - sigma (K0 - KL))^-1 for the buckling mode below, factorized at
-// set_shift (K_L itself at sigma = 1), and its solves.
-class ShiftedInverse {
- public:
-  using Scalar = double;
-  ShiftedInverse(const Eigen::SparseMatrix<double>& K0, const Eigen::SparseMatrix<double>& KL,
-                 CholeskySolver& solver, const AnalysisDeadline& deadline)
-      : K0_(K0), KL_(KL), solver_(solver), deadline_(deadline) {}
-  Eigen::Index rows() const { return K0_.rows(); }
-  Eigen::Index cols() const { return K0_.cols(); }
-  void set_shift(double sigma) {
-    const Eigen::SparseMatrix<double> shifted =
-        sigma == 1.0 ? KL_ : (1.0 - sigma) * K0_ + sigma * KL_;
-    if (solver_.factorize(shifted) != FactorizationStatus::PositiveDefinite)
-      throw std::domain_error("the shifted stiffness is not positive definite");
-  }
+  StandardForm(const Eigen::SparseMatrix<double>& S, CholeskySolver& solver,
+               const AnalysisDeadline& deadline)
+      : S_(S), solver_(solver), deadline_(deadline), x_(S.rows()), y_(S.rows()) {}
+  Eigen::Index rows() const { return S_.rows(); }
+  Eigen::Index cols() const { return S_.cols(); }
   void perform_op(const double* x_in, double* y_out) const {
     deadline_.check();
-    solver_.solve(x_in, y_out);
+    solver_.solve_upper(x_in, x_.data());
+    y_.noalias() = S_ * x_;
+    solver_.solve_lower(y_.data(), y_out);
+  }
+  Eigen::VectorXd eigenvector(const Eigen::VectorXd& x) const {
+    Eigen::VectorXd phi(x.size());
+    solver_.solve_upper(x.data(), phi.data());
+    return phi;
   }
 
  private:
-  const Eigen::SparseMatrix<double>& K0_;
-  const Eigen::SparseMatrix<double>& KL_;
+  const Eigen::SparseMatrix<double>& S_;
   CholeskySolver& solver_;
   const AnalysisDeadline& deadline_;
+  mutable Eigen::VectorXd x_, y_;
 };
 
-// The smallest load factor lambda > 1 of K0 phi = lambda (K0 - KL) phi, by
-// Lanczos on (K_L)^-1 K0 (Spectra's buckling mode, shift 1: the loads as
-// they are). Its spectrum is lambda / (lambda - 1): the loads' unaffected
-// modes gather at 1, stiffened ones below, and the wanted one above, apart
-// from the rest by 1 / (lambda - 1); in the regular-inverse form below
-// the wanted nu = 1 / lambda sits next to the unaffected modes at 0 while
-// the stiffened ones spread far below, and Lanczos crept (manta_ray
-// deployed under gravity: 1000 restarts, 18 s, not converged). False when
-// K_L is not positive definite or the eigensolver failed; lambda 0 when
-// no lambda > 1 exists. Throws DeadlinePassed.
+// The largest mu of S phi = mu A phi, A factorized in `solver` (positive
+// definite), phi K0-normalized; false when Lanczos did not converge.
+// Throws DeadlinePassed.
+bool largest_eigenpair(const Eigen::SparseMatrix<double>& S, const Eigen::SparseMatrix<double>& K0,
+                       const BucklingOptions& options, CholeskySolver& solver, double& mu,
+                       Eigen::VectorXd& phi) {
+  StandardForm op(S, solver, options.deadline);
+  const int ncv = std::min(static_cast<int>(S.rows()), 20);
+  Spectra::SymEigsSolver<StandardForm> eigs(op, 1, ncv);
+  eigs.init();
+  eigs.compute(Spectra::SortRule::LargestAlge, options.max_restarts, options.tolerance);
+  if (eigs.info() != Spectra::CompInfo::Successful) return false;
+  mu = eigs.eigenvalues()(0);
+  phi = op.eigenvector(eigs.eigenvectors().col(0));
+  phi /= std::sqrt(phi.dot(K0 * phi));
+  return true;
+}
+
+// The smallest load factor lambda > 1 of K0 phi = lambda (K0 - KL) phi:
+// the largest mu = lambda / (lambda - 1) of K0 phi = mu K_L phi (K_L
+// factorized: the loads as they are). Its spectrum sets the wanted one
+// apart: the loads' unaffected modes gather at 1, stiffened ones below,
+// and the wanted one above, apart from the rest by 1 / (lambda - 1); in
+// the form below (K_0 factorized) the wanted nu = 1 / lambda sits next to
+// the unaffected modes at 0 while the stiffened ones spread far below,
+// and Lanczos crept (manta_ray deployed under gravity: 1000 restarts,
+// 18 s, not converged). False when K_L is not positive definite or the
+// eigensolver failed; lambda 0 when no lambda > 1 exists. Throws
+// DeadlinePassed.
 bool smallest_load_factor(const Eigen::SparseMatrix<double>& K0,
                           const Eigen::SparseMatrix<double>& KL, const BucklingOptions& options,
                           CholeskySolver& solver, double& lambda, Eigen::VectorXd& phi) {
-  const int n = static_cast<int>(K0.rows());
-  ShiftedInverse op(K0, KL, solver, options.deadline);
-  SparseProduct b(K0, options.deadline);
-  const int ncv = std::min(n, 20);
-  try {
-    Spectra::SymGEigsShiftSolver<ShiftedInverse, SparseProduct, Spectra::GEigsMode::Buckling> eigs(
-        op, b, 1, ncv, 1.0);
-    eigs.init();
-    eigs.compute(Spectra::SortRule::LargestAlge, options.max_restarts, options.tolerance);
-    if (eigs.info() != Spectra::CompInfo::Successful) return false;
-    lambda = eigs.eigenvalues()(0);
-    phi = eigs.eigenvectors().col(0);
-  } catch (const std::domain_error&) {  // K_L is not positive definite
-    return false;
-  }
-  // The loads' unaffected modes (lambda infinite) sit at 1 + round-off:
-  // a factor beyond kLargestLoadFactor is one of them, not a buckling load.
+  options.deadline.check();
+  if (solver.factorize(KL) != FactorizationStatus::PositiveDefinite) return false;
+  double mu = 0.0;
+  if (!largest_eigenpair(K0, K0, options, solver, mu, phi)) return false;
+  lambda = mu > 1.0 ? mu / (mu - 1.0) : 0.0;
+  // The loads' unaffected modes (lambda infinite) sit at mu = 1 +
+  // round-off: a factor beyond kLargestLoadFactor is one of them, not a
+  // buckling load.
   if (!(lambda > 1.0 && lambda < kLargestLoadFactor)) lambda = 0.0;
   return true;
 }
 
-// The largest nu of (K0 - KL) phi = nu K0 phi, K0 factorized in `solver`;
-// false when the eigensolver failed. Throws DeadlinePassed.
+// The largest nu of (K0 - KL) phi = nu K0 phi; false when the eigensolver
+// failed. Throws DeadlinePassed.
 bool largest_softening(const Eigen::SparseMatrix<double>& K0, const Eigen::SparseMatrix<double>& KL,
                        const BucklingOptions& options, CholeskySolver& solver, double& nu,
                        Eigen::VectorXd& phi) {
@@ -135,17 +112,8 @@ bool largest_softening(const Eigen::SparseMatrix<double>& K0, const Eigen::Spars
     phi = dense.eigenvectors().col(n - 1);
     return true;
   }
-  SparseProduct a(softening, options.deadline);
-  FactorizedMatrix b(K0, solver);
-  const int ncv = std::min(n, 20);
-  Spectra::SymGEigsSolver<SparseProduct, FactorizedMatrix, Spectra::GEigsMode::RegularInverse> eigs(
-      a, b, 1, ncv);
-  eigs.init();
-  eigs.compute(Spectra::SortRule::LargestAlge, options.max_restarts, options.tolerance);
-  if (eigs.info() != Spectra::CompInfo::Successful) return false;
-  nu = eigs.eigenvalues()(0);
-  phi = eigs.eigenvectors().col(0);
-  return true;
+  if (solver.factorize(K0) != FactorizationStatus::PositiveDefinite) return false;
+  return largest_eigenpair(softening, K0, options, solver, nu, phi);
 }
 
 }  // namespace
@@ -168,8 +136,7 @@ BucklingResult linearized_buckling(const Eigen::SparseMatrix<double>& K0,
     if (n > 40 && smallest_load_factor(K0, KL, options, solver, lambda, phi)) {
       nu = lambda > 0.0 ? 1.0 / lambda : 0.0;
     } else {
-      // K_L indefinite, or no convergence: the regular-inverse form.
-      if (n > 40 && solver.factorize(K0) != FactorizationStatus::PositiveDefinite) return out;
+      // K_L indefinite, or no convergence: the form on K_0.
       if (!largest_softening(K0, KL, options, solver, nu, phi)) return out;
     }
   } catch (const DeadlinePassed&) {

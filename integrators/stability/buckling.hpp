@@ -11,14 +11,14 @@
 // The load factor is the smallest lambda > 0 at which K(lambda) turns
 // singular: with K_0 positive definite,
 //   (K_0 - K_L) phi = nu K_0 phi,  lambda = 1 / nu_max  (nu_max > 0),
-// solved by Lanczos in the K_0 inner product: at a stable loaded state (K_L
-// positive definite), on K_L^-1 K_0 (Spectra's buckling mode with shift 1,
-// K_L factorized with CHOLMOD), whose eigenvalues lambda / (lambda - 1) set
-// the wanted one apart from the unaffected modes (at 1); otherwise on
-// K_0^-1 (K_0 - K_L) (regular-inverse mode, K_0 factorized), where the
-// wanted nu sits next to the unaffected modes (at 0) and Lanczos can need
-// many restarts (manta_ray deployed under gravity: 1000 restarts and 18 s,
-// not converged, against 0.09 s). phi is the buckling mode, K_0-normalized.
+// solved by Lanczos on a standard symmetric form (G^-1 S G^-T with the
+// CHOLMOD factor G G^T of the other matrix): at a stable loaded state (K_L
+// positive definite), on K_L^-1 K_0, whose eigenvalues lambda / (lambda - 1)
+// set the wanted one apart from the unaffected modes (at 1); otherwise on
+// K_0^-1 (K_0 - K_L), where the wanted nu sits next to the unaffected modes
+// (at 0) and Lanczos can need many restarts (manta_ray deployed under
+// gravity: 1000 restarts and 18 s, not converged, against 0.09 s). phi is
+// the buckling mode, K_0-normalized.
 // No lambda > 0 means the loads only stiffen the structure (at a stable
 // loaded state: no lambda > 1): no buckling load.
 // A load factor just above 1 (within ~1e-3) is what the linear

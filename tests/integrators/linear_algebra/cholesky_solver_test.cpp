@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include <Eigen/Eigenvalues>
 #include <random>
 
 #include "integrators/linear_algebra/shifted_factorization.hpp"
@@ -39,6 +40,22 @@ Eigen::SparseMatrix<double> random_symmetric(int n, int per_column, double diago
   A.setFromTriplets(entries.begin(), entries.end());
   A.makeCompressed();
   return A;
+}
+
+// G^-1 P S P^T G^-T, column by column, for the factor G
+// of the matrix last factorized by `solver`.
+Eigen::MatrixXd standard_form(CholeskySolver& solver, const Eigen::SparseMatrix<double>& S) {
+  const Eigen::Index n = S.rows();
+  Eigen::MatrixXd C(n, n);
+  Eigen::VectorXd x(n), column(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const Eigen::VectorXd e = Eigen::VectorXd::Unit(n, j);
+    solver.solve_upper(e.data(), x.data());
+    const Eigen::VectorXd y = S * x;
+    solver.solve_lower(y.data(), column.data());
+    C.col(j) = column;
+  }
+  return C;
 }
 
 }  // namespace
@@ -85,6 +102,49 @@ TEST_CASE("CholeskySolver solves a random SPD system and reuses its analysis") {
   REQUIRE(solver.factorize(C) == FactorizationStatus::PositiveDefinite);
   CHECK((C * solver.solve(b) - b).norm() / b.norm() < 1e-10);
   CHECK(solver.stats().analyses == 2);
+}
+
+// A sparse matrix and a dense one, the second also shifted.
+TEST_CASE("The factor's halves: A^-1 in two solves, and the standard form of S phi = mu A phi") {
+  const int n = 120;
+  Eigen::SparseMatrix<double> dense_pattern =
+      Eigen::MatrixXd::Random(n, n).sparseView() * 0.1 + random_symmetric(n, 2, 0.5, 21);
+  dense_pattern = Eigen::SparseMatrix<double>(dense_pattern.transpose()) + dense_pattern;
+  const Eigen::MatrixXd dense = Eigen::MatrixXd(dense_pattern);
+  Eigen::SparseMatrix<double> spd =
+      (dense * dense.transpose() + n * Eigen::MatrixXd::Identity(n, n)).sparseView();
+  const Eigen::SparseMatrix<double> S = random_symmetric(n, 3, -4.0, 22);  // indefinite
+  const Eigen::VectorXd shift = Eigen::VectorXd::LinSpaced(n, 0.5, 1.0);
+  struct Case {
+    const char* name;
+    Eigen::SparseMatrix<double> A;
+    const Eigen::VectorXd* shift;
+  };
+  const Case cases[] = {{"sparse", random_symmetric(n, 1, 0.2, 23), nullptr},
+                        {"dense", spd, nullptr},
+                        {"dense, shifted", spd, &shift}};
+  for (const Case& c : cases) {
+    CAPTURE(c.name);
+    CholeskySolver solver;
+    REQUIRE(solver.factorize(c.A, c.shift) == FactorizationStatus::PositiveDefinite);
+    Eigen::MatrixXd A = Eigen::MatrixXd(c.A);
+    if (c.shift) A += c.shift->asDiagonal();
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+    Eigen::VectorXd half(n), x(n);
+    solver.solve_lower(b.data(), half.data());
+    solver.solve_upper(half.data(), x.data());
+    CHECK((A * x - b).norm() / b.norm() < 1e-10);
+    // G^-1 P A P^T G^-T is the identity (A shifted).
+    const Eigen::SparseMatrix<double> factorized = A.sparseView();
+    CHECK((standard_form(solver, factorized) - Eigen::MatrixXd::Identity(n, n)).norm() < 1e-10);
+    // The standard form is symmetric, with the generalized eigenvalues.
+    const Eigen::MatrixXd C = standard_form(solver, S);
+    CHECK((C - C.transpose()).norm() < 1e-10 * C.norm());
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> standard(0.5 * (C + C.transpose()));
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> generalized(Eigen::MatrixXd(S), A);
+    CHECK((standard.eigenvalues() - generalized.eigenvalues()).norm() <
+          1e-10 * generalized.eigenvalues().norm());
+  }
 }
 
 TEST_CASE("CholeskySolver reports indefinite and non-finite matrices") {
