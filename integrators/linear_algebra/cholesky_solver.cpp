@@ -212,6 +212,23 @@ FactorizationStatus CholeskySolver::factorize(const Eigen::SparseMatrix<double>&
   return FactorizationStatus::PositiveDefinite;
 }
 
+void CholeskySolver::adopt_analysis(const CholeskySolver& other) {
+  const Impl& o = *other.impl_;
+  Impl& s = *impl_;
+  if (!o.factor || &o == &s) return;
+  cholmod_factor* copy = cholmod_copy_factor(o.factor.get(), s.common->get());
+  if (copy == nullptr) throw std::runtime_error("cholmod_copy_factor failed");
+  s.factor = CholmodFactor(copy, *s.common);
+  s.ready = false;
+  s.source_outer = o.source_outer;
+  s.source_inner = o.source_inner;
+  s.lower = o.lower;
+  s.permutation = o.permutation;
+  s.scatter = o.scatter;
+  s.diagonal = o.diagonal;
+  s.permuted.resize(o.lower.cols());
+}
+
 bool CholeskySolver::factorized() const { return impl_->ready; }
 
 void CholeskySolver::Impl::require_factorization() const {

@@ -101,6 +101,10 @@ NewtonSolver::NewtonSolver(Objective& objective, NewtonOptions options)
 
 NewtonSolver::~NewtonSolver() = default;
 
+void NewtonSolver::adopt_analysis(const CholeskySolver& analysed) {
+  if (impl_) impl_->system.cholesky().adopt_analysis(analysed);
+}
+
 CholeskyStats NewtonSolver::cholesky_stats() const {
   return impl_ ? impl_->system.cholesky().stats() : CholeskyStats{};
 }

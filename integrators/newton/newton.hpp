@@ -132,6 +132,10 @@ class NewtonSolver {
   NewtonResult solve(const NewtonCallbacks& callbacks = {});
 
   const NewtonOptions& options() const { return options_; }
+  // Starts from `analysed`'s symbolic analysis (CholeskySolver::
+  // adopt_analysis): a solve whose Hessian has the pattern it last saw
+  // skips its own.
+  void adopt_analysis(const CholeskySolver& analysed);
   // Counters of the CHOLMOD solver kept across solves (all zero for n = 0).
   CholeskyStats cholesky_stats() const;
 

@@ -28,7 +28,7 @@ struct StageSolve {
 };
 
 StageSolve solve_in_stage(LinkageProblem& problem, const char* stage, const AverageConstraint* held,
-                          const StabilityOptions& options,
+                          const StabilityOptions& options, const CholeskySolver& analysed,
                           const std::function<void(const StabilityProgress&)>& report) {
   LinkageObjective objective(problem);
   NewtonOptions newton = options.unloaded_newton;
@@ -46,7 +46,9 @@ StageSolve solve_in_stage(LinkageProblem& problem, const char* stage, const Aver
     ConstrainedNewtonSolver solver(objective, *held, newton);
     out.result = solver.solve(held->value(problem.free_dofs()), callbacks);
   } else {
-    out.result = solve_newton(objective, newton, callbacks);
+    NewtonSolver solver(objective, newton);
+    solver.adopt_analysis(analysed);
+    out.result = solver.solve(callbacks);
   }
   out.stopped = stop.load();
   return out;
@@ -57,13 +59,15 @@ StageSolve solve_in_stage(LinkageProblem& problem, const char* stage, const Aver
 // Hessian on the way refutes it (a snap past a fold to a remote stable
 // state passes through unstable ones, and confirms it).
 void check_estimate(const LinkageProblem& problem, const StabilityOptions& options,
+                    const CholeskySolver& analysed,
                     const std::function<void(const StabilityProgress&)>& report,
                     StabilityAnalysis& out) {
   report({"buckling_check", 0, std::nullopt, std::nullopt});
   out.check_factor = (1.0 + options.check_margin) * out.buckling.load_factor;
   LinkageProblem scaled = problem;
   scaled.scale_loads(*out.check_factor);
-  const StageSolve check = solve_in_stage(scaled, "buckling_check", options.held, options, report);
+  const StageSolve check =
+      solve_in_stage(scaled, "buckling_check", options.held, options, analysed, report);
   if (check.stopped) {
     out.buckling.status = BucklingStatus::TimeLimit;
     return;
@@ -113,22 +117,18 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
     return out;
   }
   report({"unloaded_equilibrium", 0, std::nullopt, std::nullopt});
-  // The same supports; the default pin is chosen again (the same joint) and
-  // holds that joint where it is, as it did in `problem`.
-  StaticsSetup unloaded_setup;
-  if (problem.default_support_vertex() < 0) unloaded_setup.supports = problem.supports();
-  LinkageProblem unloaded(problem.linkage(), unloaded_setup);
-  if (unloaded.num_free() != problem.num_free()) {
-    out.buckling.status = BucklingStatus::UnloadedUnstable;
-    return out;
-  }
+  // The same supports (the same free unknowns), the loads scaled to none: a
+  // copy keeps the assembly's pattern, which a new problem would build
+  // again (30 ms on manta_ray, 6 Newton iterations' worth).
+  LinkageProblem unloaded = problem;
+  unloaded.scale_loads(0.0);
   // K_0 belongs to the unloaded equilibrium nearest the loaded state: where
   // that is a saddle it stays one (and the buckling is UnloadedUnstable),
   // never replaced by another equilibrium found past it. A held state
   // stays held: the actuation that keeps a deployed linkage open does so
   // with and without the loads.
   const StageSolve solved =
-      solve_in_stage(unloaded, "unloaded_equilibrium", options.held, options, report);
+      solve_in_stage(unloaded, "unloaded_equilibrium", options.held, options, solver, report);
   const SolveResult& relaxed = solved.result;
   out.unloaded_converged = relaxed.converged();
   out.unloaded_reason = relaxed.reason;
@@ -143,7 +143,7 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
   report({"buckling", 0, std::nullopt, std::nullopt});
   out.buckling = held_buckling(unloaded.free_hessian(), loaded_hessian, options, solver);
   if (out.buckling.status == BucklingStatus::Found && options.check_margin > 0.0)
-    check_estimate(problem, options, report, out);
+    check_estimate(problem, options, solver, report, out);
   return out;
 }
 
