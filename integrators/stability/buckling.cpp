@@ -59,7 +59,10 @@ bool largest_eigenpair(const Eigen::SparseMatrix<double>& S, const Eigen::Sparse
                        const BucklingOptions& options, CholeskySolver& solver, double& mu,
                        Eigen::VectorXd& phi) {
   StandardForm op(S, solver, options.deadline);
-  const int ncv = std::min(static_cast<int>(S.rows()), 20);
+  // 12 Lanczos vectors: the wanted eigenvalue lies apart from the rest (see
+  // smallest_load_factor); manta_ray's 8k unknowns converge in one pass of
+  // 13 operations, against 21 with 20 vectors and two passes with 8.
+  const int ncv = std::min(static_cast<int>(S.rows()), 12);
   Spectra::SymEigsSolver<StandardForm> eigs(op, 1, ncv);
   eigs.init();
   eigs.compute(Spectra::SortRule::LargestAlge, options.max_restarts, options.tolerance);
