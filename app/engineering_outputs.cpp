@@ -85,12 +85,15 @@ EngineeringSnapshot engineering_results(
   summary.engineering = engineering_json(results, origin);
 
   EngineeringSnapshot snapshot = engineering_snapshot(problem.linkage(), results, origin);
-  for (Eigen::Index k = 0; k < stability.modes.vectors.cols(); ++k)
-    snapshot.modes.push_back(
-        {"mode_" + std::to_string(k), node_displacements(problem, stability.modes.vectors.col(k))});
-  if (stability.buckling.status == BucklingStatus::Found)
-    snapshot.modes.push_back(
-        {"buckling_mode", node_displacements(problem, stability.buckling.mode)});
+  const bool buckling = stability.buckling.status == BucklingStatus::Found;
+  const Eigen::Index count = stability.modes.vectors.cols();
+  Eigen::MatrixXd vectors(problem.num_free(), count + (buckling ? 1 : 0));
+  vectors.leftCols(count) = stability.modes.vectors;
+  if (buckling) vectors.col(count) = stability.buckling.mode;
+  auto displacements = node_displacements(problem, vectors);
+  for (Eigen::Index k = 0; k < vectors.cols(); ++k)
+    snapshot.modes.push_back({k < count ? "mode_" + std::to_string(k) : "buckling_mode",
+                              std::move(displacements[static_cast<size_t>(k)])});
   return snapshot;
 }
 

@@ -147,17 +147,27 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
   return out;
 }
 
-std::vector<std::vector<Eigen::Vector3d>> node_displacements(const LinkageProblem& problem,
-                                                             const Eigen::VectorXd& free_vector) {
+std::vector<std::vector<std::vector<Eigen::Vector3d>>> node_displacements(
+    const LinkageProblem& problem, const Eigen::MatrixXd& free_vectors) {
   const RodLinkage& l = problem.linkage();
-  Eigen::VectorXd reduced = Eigen::VectorXd::Zero(l.num_dofs());
-  for (int i = 0; i < problem.num_free(); ++i) reduced[problem.free_indices()[i]] = free_vector[i];
-  std::vector<std::vector<Eigen::Vector3d>> out(l.num_segments());
+  const Eigen::Index count = free_vectors.cols();
+  Eigen::MatrixXd reduced = Eigen::MatrixXd::Zero(l.num_dofs(), count);
+  for (int i = 0; i < problem.num_free(); ++i)
+    reduced.row(problem.free_indices()[i]) = free_vectors.row(i);
+  std::vector<std::vector<std::vector<Eigen::Vector3d>>> out(
+      static_cast<size_t>(count), std::vector<std::vector<Eigen::Vector3d>>(l.num_segments()));
   for (int s = 0; s < l.num_segments(); ++s) {
-    const Eigen::VectorXd v = l.full_velocity(s, reduced);
-    for (int n = 0; n < l.segment(s).num_nodes(); ++n) out[s].push_back(v.segment<3>(3 * n));
+    const Eigen::MatrixXd v = l.full_velocities(s, reduced);
+    for (Eigen::Index c = 0; c < count; ++c)
+      for (int n = 0; n < l.segment(s).num_nodes(); ++n)
+        out[static_cast<size_t>(c)][s].push_back(v.col(c).segment<3>(3 * n));
   }
   return out;
+}
+
+std::vector<std::vector<Eigen::Vector3d>> node_displacements(const LinkageProblem& problem,
+                                                             const Eigen::VectorXd& free_vector) {
+  return node_displacements(problem, Eigen::MatrixXd(free_vector)).front();
 }
 
 }  // namespace xshell

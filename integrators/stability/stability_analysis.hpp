@@ -79,5 +79,9 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
 // the free unknowns (a mode): the translational part of J v.
 std::vector<std::vector<Eigen::Vector3d>> node_displacements(const LinkageProblem& problem,
                                                              const Eigen::VectorXd& free_vector);
+// The same for each column of `free_vectors`, [column][segment][node]
+// (each segment's map formed once).
+std::vector<std::vector<std::vector<Eigen::Vector3d>>> node_displacements(
+    const LinkageProblem& problem, const Eigen::MatrixXd& free_vectors);
 
 }  // namespace xshell

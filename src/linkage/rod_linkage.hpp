@@ -176,6 +176,8 @@ class RodLinkage {
   // Velocity of segment s's full variables for a velocity of the reduced
   // unknowns: J v.
   Eigen::VectorXd full_velocity(int s, const Eigen::VectorXd& reduced_velocity) const;
+  // The same for several (the columns): the segment's map formed once.
+  Eigen::MatrixXd full_velocities(int s, const Eigen::MatrixXd& reduced_velocities) const;
   // Where each vertex sits: a joint's position, a free end's end node, a
   // clamped free end's end edge midpoint.
   Eigen::Vector3d vertex_position(int vertex) const;

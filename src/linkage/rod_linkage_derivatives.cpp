@@ -100,9 +100,15 @@ Eigen::SparseMatrix<double> RodLinkage::hessian(const std::vector<Eigen::VectorX
 }
 
 Eigen::VectorXd RodLinkage::full_velocity(int s, const Eigen::VectorXd& reduced_velocity) const {
+  return full_velocities(s, reduced_velocity).col(0);
+}
+
+Eigen::MatrixXd RodLinkage::full_velocities(int s,
+                                            const Eigen::MatrixXd& reduced_velocities) const {
   const LocalMap map = local_map(s, false);
-  Eigen::VectorXd local(map.global.size());
-  for (size_t k = 0; k < map.global.size(); ++k) local[k] = reduced_velocity[map.global[k]];
+  Eigen::MatrixXd local(map.global.size(), reduced_velocities.cols());
+  for (size_t k = 0; k < map.global.size(); ++k)
+    local.row(static_cast<Eigen::Index>(k)) = reduced_velocities.row(map.global[k]);
   return map.jacobian * local;
 }
 
