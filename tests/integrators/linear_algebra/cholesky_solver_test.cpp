@@ -147,6 +147,30 @@ TEST_CASE("The factor's halves: A^-1 in two solves, and the standard form of S p
   }
 }
 
+TEST_CASE("A solver that adopts another's analysis factorizes that pattern without its own") {
+  const int n = 300;
+  const Eigen::SparseMatrix<double> A = random_symmetric(n, 4, 0.1, 31);
+  Eigen::SparseMatrix<double> B = A;  // the same pattern, other values
+  for (int j = 0; j < n; ++j) B.coeffRef(j, j) += 1.0 + j;
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 1.0, -1.0);
+  CholeskySolver analysed;
+  CholeskySolver adopting;
+  adopting.adopt_analysis(analysed);  // nothing analyzed yet: nothing taken
+  REQUIRE(analysed.factorize(A) == FactorizationStatus::PositiveDefinite);
+  adopting.adopt_analysis(analysed);
+  CHECK_FALSE(adopting.factorized());
+  REQUIRE(adopting.factorize(B) == FactorizationStatus::PositiveDefinite);
+  CHECK((B * adopting.solve(b) - b).norm() / b.norm() < 1e-10);
+  CHECK(adopting.stats().analyses == 0);
+  // The source is untouched: its factor still solves A.
+  CHECK((A * analysed.solve(b) - b).norm() / b.norm() < 1e-10);
+  // Another pattern is analyzed as usual.
+  const Eigen::SparseMatrix<double> C = random_symmetric(n, 5, 0.1, 32);
+  REQUIRE(adopting.factorize(C) == FactorizationStatus::PositiveDefinite);
+  CHECK((C * adopting.solve(b) - b).norm() / b.norm() < 1e-10);
+  CHECK(adopting.stats().analyses == 1);
+}
+
 TEST_CASE("CholeskySolver reports indefinite and non-finite matrices") {
   const int n = 50;
   Eigen::SparseMatrix<double> A = random_symmetric(n, 3, 0.1, 11);
