@@ -51,6 +51,10 @@ struct CholeskySolver::Impl {
   // the solution copied to `out` (may be permuted.data()).
   void solve_permuted(int system, double* out);
   void require_factorization() const;
+  // The halves take the factor for G of G G^T: an LL^T one
+  // (cholmod_handles.cpp asks for supernodal LL^T only), not the unit L of
+  // an LDL^T.
+  void require_ll_factor() const;
 };
 
 namespace {
@@ -233,8 +237,10 @@ bool CholeskySolver::factorized() const { return impl_->ready; }
 
 void CholeskySolver::Impl::require_factorization() const {
   if (!ready) throw std::logic_error("CholeskySolver::solve without a successful factorization");
-  // The halves take the factor for L of L L^T (cholmod_handles.cpp asks
-  // for supernodal LL^T only), not the unit L of an LDL^T.
+}
+
+void CholeskySolver::Impl::require_ll_factor() const {
+  require_factorization();
   if (!factor.get()->is_ll) throw std::logic_error("CholeskySolver: the factor is not LL^T");
 }
 
@@ -262,7 +268,7 @@ void CholeskySolver::solve(const double* b, double* x) {
 
 void CholeskySolver::solve_lower(const double* b, double* y) {
   Impl& s = *impl_;
-  s.require_factorization();
+  s.require_ll_factor();
   const Eigen::Index n = s.lower.cols();
   for (Eigen::Index k = 0; k < n; ++k) s.permuted[k] = b[s.permutation[static_cast<size_t>(k)]];
   s.solve_permuted(CHOLMOD_L, y);
@@ -270,7 +276,7 @@ void CholeskySolver::solve_lower(const double* b, double* y) {
 
 void CholeskySolver::solve_upper(const double* y, double* x) {
   Impl& s = *impl_;
-  s.require_factorization();
+  s.require_ll_factor();
   const Eigen::Index n = s.lower.cols();
   std::copy(y, y + n, s.permuted.data());
   s.solve_permuted(CHOLMOD_Lt, s.permuted.data());

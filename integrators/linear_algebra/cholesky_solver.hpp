@@ -59,11 +59,13 @@ class CholeskySolver {
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
 
   // The factor's halves. With P (A + shift) P^T = G G^T (P the
-  // fill-reducing permutation, G lower triangular): solve_lower: y = G^-1 P b; solve_upper: x = P^T
-  // G^-T y, so that solve_upper(solve_lower(b)) = (A + shift)^-1 b. For a symmetric S, G^-1 P S P^T
-  // G^-T is symmetric, with the eigenvalues of (A + shift)^-1 S (an eigenvector y of it gives x =
-  // P^T G^-T y of the latter): the standard form of a generalized eigenproblem. Same sizes and
-  // aliasing as solve(); neither counts in stats().solves.
+  // fill-reducing permutation, G lower triangular): solve_lower gives
+  // y = G^-1 P b, solve_upper x = P^T G^-T y, so that
+  // solve_upper(solve_lower(b)) = (A + shift)^-1 b. For a symmetric S,
+  // G^-1 P S P^T G^-T is symmetric, with the eigenvalues of
+  // (A + shift)^-1 S (an eigenvector y of it gives x = P^T G^-T y of the
+  // latter): the standard form of a generalized eigenproblem. Same sizes
+  // and aliasing as solve(); neither counts in stats().solves.
   void solve_lower(const double* b, double* y);
   void solve_upper(const double* y, double* x);
 
