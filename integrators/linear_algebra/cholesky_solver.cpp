@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -9,18 +10,6 @@
 #include "integrators/linear_algebra/cholmod_threads.hpp"
 
 namespace xshell {
-
-namespace {
-
-bool same_pattern(const Eigen::SparseMatrix<double>& A, const std::vector<int>& outer,
-                  const std::vector<int>& inner) {
-  if (static_cast<size_t>(A.cols()) + 1 != outer.size()) return false;
-  if (static_cast<size_t>(A.nonZeros()) != inner.size()) return false;
-  return std::equal(outer.begin(), outer.end(), A.outerIndexPtr()) &&
-         std::equal(inner.begin(), inner.end(), A.innerIndexPtr());
-}
-
-}  // namespace
 
 // CHOLMOD factorizes P A P^T for its fill-reducing permutation P. Handed the
 // upper triangle of A, cholmod_factorize first builds tril(P A P^T) in new
@@ -30,21 +19,30 @@ bool same_pattern(const Eigen::SparseMatrix<double>& A, const std::vector<int>& 
 // with the natural ordering (the permutation is then ours): CHOLMOD uses it
 // in place. Solves apply P to the right-hand side and P^T to the solution.
 struct CholeskySolver::Impl {
+  // What analyze() derives from an input's pattern; never changed after,
+  // so that solvers that adopt the analysis share it.
+  struct Pattern {
+    std::vector<int> source_outer, source_inner;  // the analyzed input's pattern
+    // tril(P A P^T) plus the full diagonal, in CHOLMOD's (stype = -1)
+    // layout: its structure (the values live in each solver's `values`).
+    Eigen::SparseMatrix<double> lower;
+    std::vector<int> permutation;  // P: row k of P A P^T is row permutation[k] of A
+    std::vector<int> scatter;      // input value k -> index in lower, or -1 (lower triangle of A)
+    std::vector<int> diagonal;     // unknown j -> index of its diagonal entry in lower
+  };
+
   std::unique_ptr<CholmodCommon> common = std::make_unique<CholmodCommon>();
   CholmodFactor factor;
   CholmodDense x{*common}, y{*common}, e{*common};  // cholmod_solve2 workspaces
 
-  // Pattern of the last analyzed input, to detect a change.
-  std::vector<int> source_outer, source_inner;
-  // tril(P A P^T) plus the full diagonal, in CHOLMOD's (stype = -1) layout.
-  Eigen::SparseMatrix<double> lower;
-  std::vector<int> permutation;  // P: row k of P A P^T is row permutation[k] of A
-  std::vector<int> scatter;      // input value k -> index in lower, or -1 (lower triangle of A)
-  std::vector<int> diagonal;     // unknown j -> index of its diagonal entry in lower
-  Eigen::VectorXd permuted;      // solve workspace
+  std::shared_ptr<const Pattern> pattern;  // of the last analyzed (or adopted) input
+  Eigen::VectorXd values;                  // of tril(P A P^T), in pattern->lower's layout
+  Eigen::VectorXd permuted;                // solve workspace
   bool ready = false;
   CholeskyStats stats;
 
+  Eigen::Index size() const { return pattern ? pattern->lower.cols() : 0; }
+  bool analyzed_for(const Eigen::SparseMatrix<double>& A) const;
   void analyze(const Eigen::SparseMatrix<double>& A);
   void fill(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd* shift);
   // `system` (CHOLMOD_A, _L, _Lt) solved for the right-hand side `permuted`,
@@ -93,12 +91,13 @@ std::vector<int> fill_reducing_permutation(Eigen::SparseMatrix<double>& upper, c
 
 // A factor of the already permuted matrix whose lower triangle is `lower`:
 // natural ordering, no further postordering.
-cholmod_factor* analyze_in_order(Eigen::SparseMatrix<double>& lower, cholmod_common* c) {
+cholmod_factor* analyze_in_order(const Eigen::SparseMatrix<double>& lower, double* values,
+                                 cholmod_common* c) {
   const int nmethods = c->nmethods, ordering = c->method[0].ordering, postorder = c->postorder;
   c->nmethods = 1;
   c->method[0].ordering = CHOLMOD_NATURAL;
   c->postorder = 0;
-  cholmod_sparse view = sparse_view(lower, SymmetricStorage::Lower);
+  cholmod_sparse view = sparse_view(lower, values, SymmetricStorage::Lower);
   cholmod_factor* L = nullptr;
   {
     const CholmodThreads threads;
@@ -119,14 +118,27 @@ cholmod_factor* analyze_in_order(Eigen::SparseMatrix<double>& lower, cholmod_com
 
 }  // namespace
 
+bool CholeskySolver::Impl::analyzed_for(const Eigen::SparseMatrix<double>& A) const {
+  if (!factor || !pattern) return false;
+  const std::vector<int>& outer = pattern->source_outer;
+  const std::vector<int>& inner = pattern->source_inner;
+  if (static_cast<size_t>(A.cols()) + 1 != outer.size()) return false;
+  if (static_cast<size_t>(A.nonZeros()) != inner.size()) return false;
+  return std::equal(outer.begin(), outer.end(), A.outerIndexPtr()) &&
+         std::equal(inner.begin(), inner.end(), A.innerIndexPtr());
+}
+
 void CholeskySolver::Impl::analyze(const Eigen::SparseMatrix<double>& A) {
   const int n = static_cast<int>(A.cols());
   factor.reset();
+  pattern.reset();
   ready = false;
+  auto p = std::make_shared<Pattern>();
   Eigen::SparseMatrix<double> upper = upper_pattern(A);
-  permutation = fill_reducing_permutation(upper, common->get());
+  p->permutation = fill_reducing_permutation(upper, common->get());
   std::vector<int> inverse(static_cast<size_t>(n));
-  for (int k = 0; k < n; ++k) inverse[static_cast<size_t>(permutation[static_cast<size_t>(k)])] = k;
+  for (int k = 0; k < n; ++k)
+    inverse[static_cast<size_t>(p->permutation[static_cast<size_t>(k)])] = k;
 
   // Entry (r, c) of A's upper triangle is entry (inverse[r], inverse[c]) of
   // P A P^T; its lower triangle keeps the larger index as the row.
@@ -141,6 +153,7 @@ void CholeskySolver::Impl::analyze(const Eigen::SparseMatrix<double>& A) {
       const auto [row, col] = permuted_entry(static_cast<int>(it.row()), j);
       entries.emplace_back(row, col, 0.0);
     }
+  Eigen::SparseMatrix<double>& lower = p->lower;
   lower.resize(n, n);
   lower.setFromTriplets(entries.begin(), entries.end());
   lower.makeCompressed();
@@ -151,33 +164,37 @@ void CholeskySolver::Impl::analyze(const Eigen::SparseMatrix<double>& A) {
     const int* end = lower.innerIndexPtr() + lower.outerIndexPtr()[c + 1];
     return static_cast<int>(std::lower_bound(begin, end, r) - lower.innerIndexPtr());
   };
-  scatter.assign(static_cast<size_t>(A.nonZeros()), -1);
-  diagonal.resize(static_cast<size_t>(n));
+  p->scatter.assign(static_cast<size_t>(A.nonZeros()), -1);
+  p->diagonal.resize(static_cast<size_t>(n));
   for (int j = 0; j < n; ++j) {
-    diagonal[static_cast<size_t>(j)] = position(j, j);
+    p->diagonal[static_cast<size_t>(j)] = position(j, j);
     for (int k = A.outerIndexPtr()[j]; k < A.outerIndexPtr()[j + 1]; ++k) {
       const int row = A.innerIndexPtr()[k];
-      if (row <= j) scatter[static_cast<size_t>(k)] = position(row, j);
+      if (row <= j) p->scatter[static_cast<size_t>(k)] = position(row, j);
     }
   }
-  source_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + n + 1);
-  source_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+  p->source_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + n + 1);
+  p->source_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+  values.setZero(lower.nonZeros());
   permuted.resize(n);
 
-  factor = CholmodFactor(analyze_in_order(lower, common->get()), *common);
+  factor = CholmodFactor(analyze_in_order(lower, values.data(), common->get()), *common);
+  pattern = std::move(p);
   ++stats.analyses;
 }
 
 void CholeskySolver::Impl::fill(const Eigen::SparseMatrix<double>& A,
                                 const Eigen::VectorXd* shift) {
-  double* values = lower.valuePtr();
-  std::fill(values, values + lower.nonZeros(), 0.0);
+  values.setZero();
   const double* source = A.valuePtr();
+  const std::vector<int>& scatter = pattern->scatter;
   for (size_t k = 0; k < scatter.size(); ++k)
     if (scatter[k] >= 0) values[scatter[k]] += source[k];
-  if (shift != nullptr)
+  if (shift != nullptr) {
+    const std::vector<int>& diagonal = pattern->diagonal;
     for (size_t j = 0; j < diagonal.size(); ++j)
       values[diagonal[j]] += (*shift)[static_cast<Eigen::Index>(j)];
+  }
 }
 
 CholeskySolver::CholeskySolver() : impl_(std::make_unique<Impl>()) {}
@@ -192,14 +209,12 @@ FactorizationStatus CholeskySolver::factorize(const Eigen::SparseMatrix<double>&
   if (diagonal_shift != nullptr && diagonal_shift->size() != A.cols())
     throw std::invalid_argument("CholeskySolver: shift has the wrong size");
   Impl& s = *impl_;
-  if (!s.factor || !same_pattern(A, s.source_outer, s.source_inner)) s.analyze(A);
+  if (!s.analyzed_for(A)) s.analyze(A);
   s.ready = false;
   s.fill(A, diagonal_shift);
-  const double* values = s.lower.valuePtr();
-  if (!std::all_of(values, values + s.lower.nonZeros(), [](double v) { return std::isfinite(v); }))
-    return FactorizationStatus::NonFinite;
+  if (!s.values.allFinite()) return FactorizationStatus::NonFinite;
 
-  cholmod_sparse view = sparse_view(s.lower, SymmetricStorage::Lower);
+  cholmod_sparse view = sparse_view(s.pattern->lower, s.values.data(), SymmetricStorage::Lower);
   cholmod_common* c = s.common->get();
   ++s.stats.factorizations;
   int ok = 0;
@@ -219,18 +234,14 @@ FactorizationStatus CholeskySolver::factorize(const Eigen::SparseMatrix<double>&
 void CholeskySolver::adopt_analysis(const CholeskySolver& other) {
   const Impl& o = *other.impl_;
   Impl& s = *impl_;
-  if (!o.factor || &o == &s) return;
+  if (!o.factor || !o.pattern || &o == &s) return;
   cholmod_factor* copy = cholmod_copy_factor(o.factor.get(), s.common->get());
   if (copy == nullptr) throw std::runtime_error("cholmod_copy_factor failed");
   s.factor = CholmodFactor(copy, *s.common);
   s.ready = false;
-  s.source_outer = o.source_outer;
-  s.source_inner = o.source_inner;
-  s.lower = o.lower;
-  s.permutation = o.permutation;
-  s.scatter = o.scatter;
-  s.diagonal = o.diagonal;
-  s.permuted.resize(o.lower.cols());
+  s.pattern = o.pattern;
+  s.values.setZero(o.values.size());
+  s.permuted.resize(o.size());
 }
 
 bool CholeskySolver::factorized() const { return impl_->ready; }
@@ -259,28 +270,31 @@ void CholeskySolver::Impl::solve_permuted(int system, double* out) {
 void CholeskySolver::solve(const double* b, double* x) {
   Impl& s = *impl_;
   s.require_factorization();
-  const Eigen::Index n = s.lower.cols();
-  for (Eigen::Index k = 0; k < n; ++k) s.permuted[k] = b[s.permutation[static_cast<size_t>(k)]];
+  const Eigen::Index n = s.size();
+  const std::vector<int>& permutation = s.pattern->permutation;
+  for (Eigen::Index k = 0; k < n; ++k) s.permuted[k] = b[permutation[static_cast<size_t>(k)]];
   s.solve_permuted(CHOLMOD_A, s.permuted.data());
-  for (Eigen::Index k = 0; k < n; ++k) x[s.permutation[static_cast<size_t>(k)]] = s.permuted[k];
+  for (Eigen::Index k = 0; k < n; ++k) x[permutation[static_cast<size_t>(k)]] = s.permuted[k];
   ++s.stats.solves;
 }
 
 void CholeskySolver::solve_lower(const double* b, double* y) {
   Impl& s = *impl_;
   s.require_ll_factor();
-  const Eigen::Index n = s.lower.cols();
-  for (Eigen::Index k = 0; k < n; ++k) s.permuted[k] = b[s.permutation[static_cast<size_t>(k)]];
+  const Eigen::Index n = s.size();
+  const std::vector<int>& permutation = s.pattern->permutation;
+  for (Eigen::Index k = 0; k < n; ++k) s.permuted[k] = b[permutation[static_cast<size_t>(k)]];
   s.solve_permuted(CHOLMOD_L, y);
 }
 
 void CholeskySolver::solve_upper(const double* y, double* x) {
   Impl& s = *impl_;
   s.require_ll_factor();
-  const Eigen::Index n = s.lower.cols();
+  const Eigen::Index n = s.size();
+  const std::vector<int>& permutation = s.pattern->permutation;
   std::copy(y, y + n, s.permuted.data());
   s.solve_permuted(CHOLMOD_Lt, s.permuted.data());
-  for (Eigen::Index k = 0; k < n; ++k) x[s.permutation[static_cast<size_t>(k)]] = s.permuted[k];
+  for (Eigen::Index k = 0; k < n; ++k) x[permutation[static_cast<size_t>(k)]] = s.permuted[k];
 }
 
 Eigen::VectorXd CholeskySolver::solve(const Eigen::VectorXd& b) {
@@ -289,7 +303,7 @@ Eigen::VectorXd CholeskySolver::solve(const Eigen::VectorXd& b) {
   return x;
 }
 
-Eigen::Index CholeskySolver::size() const { return impl_->lower.cols(); }
+Eigen::Index CholeskySolver::size() const { return impl_->size(); }
 
 const CholeskyStats& CholeskySolver::stats() const { return impl_->stats; }
 

@@ -66,6 +66,14 @@ cholmod_sparse sparse_view(Eigen::SparseMatrix<double>& matrix, SymmetricStorage
   return view;
 }
 
+cholmod_sparse sparse_view(const Eigen::SparseMatrix<double>& pattern, double* values,
+                           SymmetricStorage storage) {
+  // CHOLMOD's header has no const; the calls this view is for read it.
+  cholmod_sparse view = sparse_view(const_cast<Eigen::SparseMatrix<double>&>(pattern), storage);
+  view.x = values;
+  return view;
+}
+
 cholmod_dense dense_view(Eigen::Ref<Eigen::VectorXd> vector) {
   cholmod_dense view{};
   view.nrow = static_cast<size_t>(vector.size());

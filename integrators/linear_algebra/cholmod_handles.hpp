@@ -81,6 +81,12 @@ enum class SymmetricStorage { Upper = 1, Lower = -1, Unsymmetric = 0 };
 // With SymmetricStorage::Upper CHOLMOD reads only the entries with
 // row <= column, so a matrix storing both triangles can be passed as is.
 cholmod_sparse sparse_view(Eigen::SparseMatrix<double>& matrix, SymmetricStorage storage);
+// The same over the structure of `pattern` with the values in `values`
+// (pattern.nonZeros() of them): for CHOLMOD calls that read the matrix
+// only (analysis, factorization), several value arrays sharing one
+// structure.
+cholmod_sparse sparse_view(const Eigen::SparseMatrix<double>& pattern, double* values,
+                           SymmetricStorage storage);
 
 // A one-column cholmod_dense header over a vector (valid while it lives).
 cholmod_dense dense_view(Eigen::Ref<Eigen::VectorXd> vector);

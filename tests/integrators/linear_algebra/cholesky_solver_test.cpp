@@ -164,11 +164,21 @@ TEST_CASE("A solver that adopts another's analysis factorizes that pattern witho
   CHECK(adopting.stats().analyses == 0);
   // The source is untouched: its factor still solves A.
   CHECK((A * analysed.solve(b) - b).norm() / b.norm() < 1e-10);
+  // The two share the analysis, not the values: the source refactorized
+  // (no analysis of its own either) leaves the adopter's factor as it was.
+  REQUIRE(analysed.factorize(2.0 * A) == FactorizationStatus::PositiveDefinite);
+  CHECK(analysed.stats().analyses == 1);
+  CHECK((2.0 * A * analysed.solve(b) - b).norm() / b.norm() < 1e-10);
+  CHECK((B * adopting.solve(b) - b).norm() / b.norm() < 1e-10);
   // Another pattern is analyzed as usual.
   const Eigen::SparseMatrix<double> C = random_symmetric(n, 5, 0.1, 32);
   REQUIRE(adopting.factorize(C) == FactorizationStatus::PositiveDefinite);
   CHECK((C * adopting.solve(b) - b).norm() / b.norm() < 1e-10);
   CHECK(adopting.stats().analyses == 1);
+  // and leaves the source's analysis alone.
+  REQUIRE(analysed.factorize(B) == FactorizationStatus::PositiveDefinite);
+  CHECK((B * analysed.solve(b) - b).norm() / b.norm() < 1e-10);
+  CHECK(analysed.stats().analyses == 1);
 }
 
 TEST_CASE("CholeskySolver reports indefinite and non-finite matrices") {
