@@ -128,7 +128,9 @@ BucklingResult linearized_buckling(const Eigen::SparseMatrix<double>& K0,
   const int n = static_cast<int>(K0.rows());
   CholeskySolver own;
   CholeskySolver& solver = reused ? *reused : own;
-  if (n == 0 || solver.factorize(K0) != FactorizationStatus::PositiveDefinite) {
+  const bool definite = n > 0 && (options.unloaded_positive_definite ||
+                                  solver.factorize(K0) == FactorizationStatus::PositiveDefinite);
+  if (!definite) {
     out.status = BucklingStatus::UnloadedUnstable;
     return out;
   }

@@ -56,6 +56,10 @@ struct BucklingOptions {
   double tolerance = 1e-10;  // Spectra's relative tolerance
   int max_restarts = 1000;
   AnalysisDeadline deadline;  // past it: status TimeLimit
+  // K0 is known positive definite (an unshifted factorization of it
+  // succeeded, as Newton's stability test at the unloaded equilibrium):
+  // not factorized again only to check it.
+  bool unloaded_positive_definite = false;
 };
 
 struct BucklingResult {

@@ -81,10 +81,11 @@ void check_estimate(const LinkageProblem& problem, const StabilityOptions& optio
 // actuation removes the opening mode, which the loads would otherwise
 // soften first.
 BucklingResult held_buckling(const Eigen::SparseMatrix<double>& K0,
-                             const Eigen::SparseMatrix<double>& KL, const StabilityOptions& options,
-                             CholeskySolver& solver) {
+                             const Eigen::SparseMatrix<double>& KL, bool K0_definite,
+                             const StabilityOptions& options, CholeskySolver& solver) {
   BucklingOptions buckling;
   buckling.deadline = options.deadline;
+  buckling.unloaded_positive_definite = K0_definite;
   if (!options.held) return linearized_buckling(K0, KL, buckling, &solver);
   const AverageConstraint& held = *options.held;
   BucklingResult out = linearized_buckling(held.reduce(K0), held.reduce(KL), buckling, &solver);
@@ -141,7 +142,9 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
     return out;
   }
   report({"buckling", 0, std::nullopt, std::nullopt});
-  out.buckling = held_buckling(unloaded.free_hessian(), loaded_hessian, options, solver);
+  // Newton's stability test there factorized K_0 (B^T K_0 B when held).
+  out.buckling =
+      held_buckling(unloaded.free_hessian(), loaded_hessian, relaxed.stable, options, solver);
   if (out.buckling.status == BucklingStatus::Found && options.check_margin > 0.0)
     check_estimate(problem, options, solver, report, out);
   return out;

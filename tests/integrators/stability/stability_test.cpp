@@ -7,6 +7,7 @@
 #include "integrators/common/linkage_objective.hpp"
 #include "integrators/deployment/constrained_newton.hpp"
 #include "integrators/deployment/deployment_fixtures.hpp"
+#include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/stability/stability_analysis.hpp"
 
 namespace xshell::test {
@@ -103,6 +104,27 @@ TEST_CASE("A tension load never buckles, without loads there is no buckling anal
   CHECK(!a.loaded);
   CHECK(a.modes.converged);
   CHECK(a.modes.values.size() == 6);
+}
+
+TEST_CASE("Buckling told that K_0 is positive definite skips only that factorization") {
+  // The column at half its Euler load: lambda = 2 either way, one factorization fewer.
+  const double p_cr = M_PI * M_PI / 4.0;
+  LinkageProblem problem = cantilever_beam(200, Eigen::Vector3d(-0.5 * p_cr, 0, 0));
+  REQUIRE(relax(problem, 1e-8).converged());
+  LinkageProblem unloaded = problem;
+  unloaded.scale_loads(0.0);
+  REQUIRE(relax(unloaded, 1e-8).converged());
+  const Eigen::SparseMatrix<double> K0 = unloaded.free_hessian(), KL = problem.free_hessian();
+  CholeskySolver checked, told;
+  const BucklingResult a = linearized_buckling(K0, KL, {}, &checked);
+  BucklingOptions known;
+  known.unloaded_positive_definite = true;
+  const BucklingResult b = linearized_buckling(K0, KL, known, &told);
+  REQUIRE(a.status == BucklingStatus::Found);
+  REQUIRE(b.status == BucklingStatus::Found);
+  CHECK(std::abs(a.load_factor / 2.0 - 1.0) < 1e-3);
+  CHECK(b.load_factor == doctest::Approx(a.load_factor).epsilon(1e-12));
+  CHECK(told.stats().factorizations == checked.stats().factorizations - 1);
 }
 
 }  // namespace xshell::test
