@@ -118,8 +118,14 @@ void LinkageAssembly::local_hessian(const SegmentPlan& plan, int nv, Scratch& w)
   const int m = plan.size();
   const int nf = static_cast<int>(plan.free_full.size());
   Eigen::Map<Eigen::MatrixXd> L(w.local_hessian.data(), m, m);
+  // The rod's Hessian is symmetric to round-off only on some processors
+  // (an AVX2 build: mirrored entries one ulp apart): each pair is read from
+  // one triangle, so that L is symmetric bit for bit.
   for (int c = 0; c < nf; ++c)
-    for (int r = 0; r < nf; ++r) L(r, c) = hv(plan.free_full[r], plan.free_full[c]);
+    for (int r = 0; r < nf; ++r) {
+      const int i = plan.free_full[r], j = plan.free_full[c];
+      L(r, c) = i <= j ? hv(i, j) : hv(j, i);
+    }
   for (int side = 0; side < 2; ++side) {
     const int o = plan.joint_local[side];
     if (o < 0) continue;
