@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -37,7 +38,12 @@ struct CholeskySolver::Impl {
 
   std::shared_ptr<const Pattern> pattern;  // of the last analyzed (or adopted) input
   Eigen::VectorXd values;                  // of tril(P A P^T), in pattern->lower's layout
-  Eigen::VectorXd permuted;                // solve workspace
+  // The values of the last factorization, and its status when it ran to
+  // the end (none after an analysis or an adoption): the next values are
+  // filled into `values`, and the two swap after a factorization.
+  Eigen::VectorXd factorized_values;
+  std::optional<FactorizationStatus> factorized_status;
+  Eigen::VectorXd permuted;  // solve workspace
   bool ready = false;
   CholeskyStats stats;
 
@@ -45,6 +51,12 @@ struct CholeskySolver::Impl {
   bool analyzed_for(const Eigen::SparseMatrix<double>& A) const;
   void analyze(const Eigen::SparseMatrix<double>& A);
   void fill(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd* shift);
+  // Keeps the values just factorized and their status; returns it.
+  FactorizationStatus remember(FactorizationStatus status) {
+    values.swap(factorized_values);
+    factorized_status = status;
+    return status;
+  }
   // `system` (CHOLMOD_A, _L, _Lt) solved for the right-hand side `permuted`,
   // the solution copied to `out` (may be permuted.data()).
   void solve_permuted(int system, double* out);
@@ -176,6 +188,8 @@ void CholeskySolver::Impl::analyze(const Eigen::SparseMatrix<double>& A) {
   p->source_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + n + 1);
   p->source_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
   values.setZero(lower.nonZeros());
+  factorized_values.resize(0);
+  factorized_status.reset();
   permuted.resize(n);
 
   factor = CholmodFactor(analyze_in_order(lower, values.data(), common->get()), *common);
@@ -185,7 +199,7 @@ void CholeskySolver::Impl::analyze(const Eigen::SparseMatrix<double>& A) {
 
 void CholeskySolver::Impl::fill(const Eigen::SparseMatrix<double>& A,
                                 const Eigen::VectorXd* shift) {
-  values.setZero();
+  values.setZero(pattern->lower.nonZeros());
   const double* source = A.valuePtr();
   const std::vector<int>& scatter = pattern->scatter;
   for (size_t k = 0; k < scatter.size(); ++k)
@@ -213,6 +227,11 @@ FactorizationStatus CholeskySolver::factorize(const Eigen::SparseMatrix<double>&
   s.ready = false;
   s.fill(A, diagonal_shift);
   if (!s.values.allFinite()) return FactorizationStatus::NonFinite;
+  if (s.factorized_status && s.values == s.factorized_values) {
+    s.ready = *s.factorized_status == FactorizationStatus::PositiveDefinite;
+    return *s.factorized_status;
+  }
+  s.factorized_status.reset();
 
   cholmod_sparse view = sparse_view(s.pattern->lower, s.values.data(), SymmetricStorage::Lower);
   cholmod_common* c = s.common->get();
@@ -224,11 +243,11 @@ FactorizationStatus CholeskySolver::factorize(const Eigen::SparseMatrix<double>&
   }
   if (c->status == CHOLMOD_NOT_POSDEF || s.factor.get()->minor < s.factor.get()->n) {
     ++s.stats.failed_factorizations;
-    return FactorizationStatus::NotPositiveDefinite;
+    return s.remember(FactorizationStatus::NotPositiveDefinite);
   }
   if (!ok || c->status < CHOLMOD_OK) throw std::runtime_error("cholmod_factorize failed");
   s.ready = true;
-  return FactorizationStatus::PositiveDefinite;
+  return s.remember(FactorizationStatus::PositiveDefinite);
 }
 
 void CholeskySolver::adopt_analysis(const CholeskySolver& other) {
@@ -241,6 +260,8 @@ void CholeskySolver::adopt_analysis(const CholeskySolver& other) {
   s.ready = false;
   s.pattern = o.pattern;
   s.values.setZero(o.values.size());
+  s.factorized_values.resize(0);
+  s.factorized_status.reset();
   s.permuted.resize(o.size());
 }
 

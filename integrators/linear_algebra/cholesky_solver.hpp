@@ -26,7 +26,7 @@ enum class FactorizationStatus {
 // Counters for benchmarks and tests.
 struct CholeskyStats {
   long analyses = 0;               // symbolic analyses
-  long factorizations = 0;         // numeric factorizations attempted
+  long factorizations = 0;         // numeric factorizations attempted (repeats not counted)
   long failed_factorizations = 0;  // of which not positive definite
   long solves = 0;
 };
@@ -41,6 +41,9 @@ class CholeskySolver {
   // Numeric factorization of A + diag(diagonal_shift). A: n x n, symmetric,
   // compressed; only entries with row <= column are read. diagonal_shift:
   // size n or nullptr for none. Analyzes the pattern first if it is new.
+  // The same matrix as the last factorization's (every value equal, the
+  // shift included) is not factorized again: its status stands (the
+  // eigenmodes' unshifted H and the buckling's K_L, one loaded Hessian).
   FactorizationStatus factorize(const Eigen::SparseMatrix<double>& A,
                                 const Eigen::VectorXd* diagonal_shift = nullptr);
 

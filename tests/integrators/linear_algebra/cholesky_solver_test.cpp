@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Eigenvalues>
+#include <cmath>
 #include <random>
 
 #include "integrators/linear_algebra/shifted_factorization.hpp"
@@ -179,6 +180,47 @@ TEST_CASE("A solver that adopts another's analysis factorizes that pattern witho
   REQUIRE(analysed.factorize(B) == FactorizationStatus::PositiveDefinite);
   CHECK((B * analysed.solve(b) - b).norm() / b.norm() < 1e-10);
   CHECK(analysed.stats().analyses == 1);
+}
+
+TEST_CASE("The same matrix factorized again costs no factorization, any other value does") {
+  const int n = 200;
+  const Eigen::SparseMatrix<double> A = random_symmetric(n, 4, 0.1, 41);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 1.0);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd shift = Eigen::VectorXd::Constant(n, 0.5);
+  CholeskySolver solver;
+  REQUIRE(solver.factorize(A) == FactorizationStatus::PositiveDefinite);
+  // A again, and A plus a zero shift: the same values.
+  REQUIRE(solver.factorize(A) == FactorizationStatus::PositiveDefinite);
+  REQUIRE(solver.factorize(A, &zero) == FactorizationStatus::PositiveDefinite);
+  CHECK(solver.stats().factorizations == 1);
+  CHECK((A * solver.solve(b) - b).norm() / b.norm() < 1e-10);
+  // A shifted, then A: two more, each solving its own matrix.
+  REQUIRE(solver.factorize(A, &shift) == FactorizationStatus::PositiveDefinite);
+  Eigen::SparseMatrix<double> shifted = A;
+  for (int j = 0; j < n; ++j) shifted.coeffRef(j, j) += 0.5;
+  CHECK((shifted * solver.solve(b) - b).norm() / b.norm() < 1e-10);
+  REQUIRE(solver.factorize(A) == FactorizationStatus::PositiveDefinite);
+  CHECK((A * solver.solve(b) - b).norm() / b.norm() < 1e-10);
+  CHECK(solver.stats().factorizations == 3);
+  // One entry changed in its last bit is another matrix.
+  Eigen::SparseMatrix<double> nudged = A;
+  nudged.coeffRef(n - 1, n - 1) = std::nextafter(A.coeff(n - 1, n - 1), 1e300);
+  REQUIRE(solver.factorize(nudged) == FactorizationStatus::PositiveDefinite);
+  CHECK(solver.stats().factorizations == 4);
+  // An indefinite matrix stays indefinite, counted once, and not solvable.
+  shift.setConstant(-1e6);
+  CHECK(solver.factorize(A, &shift) == FactorizationStatus::NotPositiveDefinite);
+  CHECK(solver.factorize(A, &shift) == FactorizationStatus::NotPositiveDefinite);
+  CHECK_FALSE(solver.factorized());
+  CHECK(solver.stats().factorizations == 5);
+  CHECK(solver.stats().failed_factorizations == 1);
+  // An adopted analysis comes without values: its first factorization is one.
+  CholeskySolver adopting;
+  adopting.adopt_analysis(solver);
+  REQUIRE(adopting.factorize(A) == FactorizationStatus::PositiveDefinite);
+  CHECK(adopting.stats().factorizations == 1);
+  CHECK((A * adopting.solve(b) - b).norm() / b.norm() < 1e-10);
 }
 
 TEST_CASE("CholeskySolver reports indefinite and non-finite matrices") {
