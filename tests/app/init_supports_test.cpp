@@ -9,7 +9,7 @@
 
 #include "reliability_support.hpp"
 
-namespace xshell::test {
+namespace xshell::test::init_supports_test {
 
 namespace {
 
@@ -155,4 +155,4 @@ TEST_CASE("relax --init: a deployment with edge-vector joints names the joints, 
   CHECK_FALSE(contains(r.errors, "state"));
 }
 
-}  // namespace xshell::test
+}  // namespace xshell::test::init_supports_test

@@ -11,7 +11,7 @@
 #include "reliability_support.hpp"
 #include "skip.hpp"
 
-namespace xshell::test {
+namespace xshell::test::opening_angles_test {
 
 namespace {
 
@@ -213,4 +213,4 @@ TEST_CASE("Manta ray relaxed flat: its smallest opening angle and the joints thr
   CHECK(std::stod(cells[9]) == closed["min_opening_angle"].get<double>());
 }
 
-}  // namespace xshell::test
+}  // namespace xshell::test::opening_angles_test

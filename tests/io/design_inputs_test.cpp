@@ -18,7 +18,7 @@
 #include "io/support_selection.hpp"
 #include "skip.hpp"
 
-namespace xshell::test {
+namespace xshell::test::design_inputs_test {
 namespace {
 
 using nlohmann::json;
@@ -260,4 +260,4 @@ TEST_CASE("Design inputs: the boundary of the real designs") {
   CHECK(large_rim.size() == 128);
 }
 
-}  // namespace xshell::test
+}  // namespace xshell::test::design_inputs_test

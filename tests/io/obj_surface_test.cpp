@@ -6,7 +6,7 @@
 #include "io/input_error.hpp"
 #include "io/obj_reader.hpp"
 
-namespace xshell::test {
+namespace xshell::test::obj_surface_test {
 namespace {
 
 std::string rejection(const std::string& text) {
@@ -68,4 +68,4 @@ TEST_CASE("A linkage file still refuses faces") {
   CHECK(message.find("t.obj:4: faces ('f') are not allowed") == 0);
 }
 
-}  // namespace xshell::test
+}  // namespace xshell::test::obj_surface_test

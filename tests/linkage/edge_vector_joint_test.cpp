@@ -12,7 +12,7 @@
 #include "linkage/model_error.hpp"
 #include "linkage_fixtures.hpp"
 
-namespace xshell::test {
+namespace xshell::test::edge_vector_joint_test {
 
 namespace {
 
@@ -224,4 +224,4 @@ TEST_CASE("States restore across joint kinds, in memory and through state.json")
   CHECK(restores == 4);
 }
 
-}  // namespace xshell::test
+}  // namespace xshell::test::edge_vector_joint_test

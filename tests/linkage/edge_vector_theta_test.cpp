@@ -11,7 +11,7 @@
 #include "finite_differences.hpp"
 #include "linkage/edge_vector_conversion.hpp"
 
-namespace xshell::test {
+namespace xshell::test::edge_vector_theta_test {
 
 namespace {
 
@@ -195,4 +195,4 @@ TEST_CASE(
   CHECK(cases == 8);
 }
 
-}  // namespace xshell::test
+}  // namespace xshell::test::edge_vector_theta_test

@@ -5,7 +5,7 @@
 #include "finite_differences.hpp"
 #include "linkage_fixtures.hpp"
 
-namespace xshell::test {
+namespace xshell::test::rod_linkage_test {
 
 namespace {
 
@@ -220,4 +220,4 @@ TEST_CASE("The gradient is orthogonal to rigid motions of the linkage") {
   CHECK(motions == 6);
 }
 
-}  // namespace xshell::test
+}  // namespace xshell::test::rod_linkage_test

@@ -9,7 +9,7 @@
 #include "integrators/convergence.hpp"
 #include "integrators/toy_objectives.hpp"
 
-namespace xshell::test {
+namespace xshell::test::newton_test {
 
 namespace {
 
@@ -314,4 +314,4 @@ TEST_CASE("an unexpected exception inside a KINSOL callback reaches the caller")
   CHECK(faulty.calls() >= 3);
 }
 
-}  // namespace xshell::test
+}  // namespace xshell::test::newton_test

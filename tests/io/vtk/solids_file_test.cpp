@@ -15,7 +15,7 @@
 #include "demo_snapshot.hpp"
 #include "vtk_test_support.hpp"
 
-namespace xshell::test {
+namespace xshell::test::solids_file_test {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -205,4 +205,4 @@ TEST_CASE("solids file: a section without width is rejected") {
   CHECK(file_names(dir.path()).empty());
 }
 
-}  // namespace xshell::test
+}  // namespace xshell::test::solids_file_test
