@@ -9,8 +9,6 @@
 namespace xshell {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // d1 made orthogonal to the unit tangent t and normalized; `fallback` (also
 // projected) when d1 is nearly parallel to t or zero.
 Eigen::Vector3d orthogonal_unit(const Eigen::Vector3d& t, const Eigen::Vector3d& d1,
@@ -38,6 +36,7 @@ std::vector<Eigen::Vector2d> section_outline(const SectionSnapshot& section, int
                                 std::to_string(ellipse_sides));
   std::vector<Eigen::Vector2d> outline;
   outline.reserve(static_cast<size_t>(ellipse_sides));
+  constexpr double kPi = 3.14159265358979323846;
   for (int j = 0; j < ellipse_sides; ++j) {
     const double theta = 2.0 * kPi * j / ellipse_sides;
     outline.emplace_back(a * std::cos(theta), b * std::sin(theta));
