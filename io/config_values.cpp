@@ -1,5 +1,6 @@
 #include "config_values.hpp"
 
+#include <cmath>
 #include <filesystem>
 
 #include "input_error.hpp"
@@ -25,10 +26,7 @@ double inside(const JsonField& f, double lo, double hi, const std::string& inter
   return x;
 }
 
-double angle(const JsonField& f) {
-  constexpr double kPi = 3.14159265358979323846;
-  return inside(f, 0, kPi, "(0, pi) radians");
-}
+double angle(const JsonField& f) { return inside(f, 0, M_PI, "(0, pi) radians"); }
 
 int at_least(const JsonField& f, int lo) {
   const int n = f.integer();

@@ -10,8 +10,6 @@ namespace xshell {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 struct Direction {
   Eigen::Vector3d back;  // from the focal point to the eye, unit
   Eigen::Vector3d up;
@@ -66,7 +64,7 @@ Eigen::Vector3d flat_normal(const std::vector<vtkPolyData*>& shown) {
 
 // `back` turned towards `normal` until it makes `degrees` with the plane.
 Eigen::Vector3d raised(const Eigen::Vector3d& back, Eigen::Vector3d normal, double degrees) {
-  const double s = std::sin(degrees * kPi / 180.0);
+  const double s = std::sin(degrees * M_PI / 180.0);
   if (normal.isZero() || std::abs(back.dot(normal)) >= s) return back;
   if (back.dot(normal) < 0.0 || (back.dot(normal) == 0.0 && normal.z() < 0.0)) normal = -normal;
   const Eigen::Vector3d in_plane = (back - back.dot(normal) * normal).normalized();
@@ -89,7 +87,7 @@ void place_camera(vtkCamera& camera, const std::vector<vtkPolyData*>& shown, Ren
   if (std::abs(d.back.dot(d.up)) > 0.99) d.up = Eigen::Vector3d::UnitY();
   const Eigen::Vector3d up = (d.up - d.back.dot(d.up) * d.back).normalized();
   const Eigen::Vector3d right = up.cross(d.back);
-  const double tan_half = std::tan(0.5 * camera.GetViewAngle() * kPi / 180.0);
+  const double tan_half = std::tan(0.5 * camera.GetViewAngle() * M_PI / 180.0);
   const double margin = 1.05;
   double distance = 0.0;
   for_each_point(shown, [&](const Eigen::Vector3d& x) {

@@ -36,9 +36,8 @@ std::vector<Eigen::Vector2d> section_outline(const SectionSnapshot& section, int
                                 std::to_string(ellipse_sides));
   std::vector<Eigen::Vector2d> outline;
   outline.reserve(static_cast<size_t>(ellipse_sides));
-  constexpr double kPi = 3.14159265358979323846;
   for (int j = 0; j < ellipse_sides; ++j) {
-    const double theta = 2.0 * kPi * j / ellipse_sides;
+    const double theta = 2.0 * M_PI * j / ellipse_sides;
     outline.emplace_back(a * std::cos(theta), b * std::sin(theta));
   }
   return outline;

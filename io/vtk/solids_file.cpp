@@ -41,7 +41,7 @@ RingLayout ring_layout(const std::vector<Eigen::Vector2d>& outline, double creas
   const size_t m = outline.size();
   std::vector<Eigen::Vector2d> sides(m);
   for (size_t j = 0; j < m; ++j) sides[j] = side_normal(outline[j], outline[(j + 1) % m]);
-  const double crease_cos = std::cos(crease_degrees * 3.14159265358979323846 / 180.0);
+  const double crease_cos = std::cos(crease_degrees * M_PI / 180.0);
   RingLayout layout;
   layout.side_start.resize(m);
   layout.side_end.resize(m);
