@@ -32,11 +32,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -44,6 +41,7 @@
 #include <omp.h>
 #endif
 
+#include "bench_cases.hpp"
 #include "bench_measure.hpp"
 #include "bench_report.hpp"
 #include "bench_result.hpp"
@@ -54,27 +52,12 @@
 #include "integrators/kinetic_damping/kinetic_damping.hpp"
 #include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/newton/newton.hpp"
-#include "io/config.hpp"
-#include "io/input_error.hpp"
-#include "io/obj_reader.hpp"
-#include "io/problem_setup.hpp"
 #include "linkage/statics_problem.hpp"
 
 namespace {
 
 using namespace xshell;
 using namespace xshell::bench;
-namespace fs = std::filesystem;
-
-struct BenchCase {
-  std::string name;
-  std::string kind;  // "graph", "grid" or "sample"
-  LineGraph graph;
-  int subdivisions = 8;
-  bool gravity = false;
-  std::shared_ptr<const ProblemSetup>
-      setup;  // a sample's, from its configuration; else the fields above
-};
 
 // What run_case measures besides the factorization costs.
 struct BenchSettings {
@@ -83,59 +66,6 @@ struct BenchSettings {
   bool solvers = false;
   long kinetic_limit = 200000;
 };
-
-// A regular grid of n x n crossings of straight rods (spacing 100 mm), each
-// rod running half a spacing past its last crossing to a free end, with the
-// crossings moved in the plane by up to 8 mm so that the rods are kinked at
-// the joints: relaxing it from flat with straight rest shapes has work to do.
-LineGraph wavy_grid(int n) {
-  const double spacing = 100.0, amplitude = 8.0;
-  LineGraph g;
-  auto joint = [&](int i, int j) { return i * n + j; };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const double x = spacing * j, y = spacing * i;
-      g.vertices.emplace_back(x + amplitude * std::sin(1.3 * i + 0.7 * j),
-                              y + amplitude * std::cos(0.9 * i - 1.1 * j), 0.0);
-    }
-  auto free_end = [&](double x, double y) {
-    g.vertices.emplace_back(x, y, 0.0);
-    return static_cast<int>(g.vertices.size()) - 1;
-  };
-  for (int i = 0; i < n; ++i) {  // rods along x, then along y
-    g.edges.push_back({free_end(-0.5 * spacing, spacing * i), joint(i, 0)});
-    for (int j = 0; j + 1 < n; ++j) g.edges.push_back({joint(i, j), joint(i, j + 1)});
-    g.edges.push_back({joint(i, n - 1), free_end(spacing * (n - 0.5), spacing * i)});
-  }
-  for (int j = 0; j < n; ++j) {
-    g.edges.push_back({free_end(spacing * j, -0.5 * spacing), joint(0, j)});
-    for (int i = 0; i + 1 < n; ++i) g.edges.push_back({joint(i, j), joint(i + 1, j)});
-    g.edges.push_back({joint(n - 1, j), free_end(spacing * j, spacing * (n - 0.5))});
-  }
-  return g;
-}
-
-LinkageProblem make_problem(const BenchCase& c) {
-  if (c.setup)
-    return LinkageProblem(RodLinkage(c.setup->graph, c.setup->options), c.setup->statics);
-  LineGraph graph = c.graph;
-  Eigen::Vector3d lo = graph.vertices.at(0), hi = lo;
-  for (const auto& v : graph.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  for (auto& v : graph.vertices) v -= 0.5 * (lo + hi);  // as the configuration reader does
-  LinkageOptions options;
-  options.subdivisions = c.subdivisions;
-  options.rest_shape = RestShape::Straight;
-  options.material.young_modulus = 20000.0;  // N/mm^2
-  options.material.poisson_ratio = 0.3;
-  options.material.density = c.gravity ? 1.0e-9 : 0.0;  // t/mm^3 (1000 kg/m^3)
-  options.material.section = {SectionShape::Rectangle, 10.0, 7.0};
-  StaticsSetup setup;
-  if (c.gravity) setup.gravity = Eigen::Vector3d(0.0, 0.0, -9810.0);  // mm/s^2
-  return LinkageProblem(RodLinkage(graph, options), setup);
-}
 
 // Median time of one numeric factorization of the free Hessian at the
 // start. An indefinite Hessian stops LL^T early: it is shifted as Newton
@@ -225,20 +155,53 @@ void deployment_step(LinkageProblem& problem, BenchResult& r) {
   if (result.converged()) r.deployment_status = step.stable ? "converged" : "converged_unstable";
 }
 
-BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
-  const int reps = settings.reps;
-  const bool solve = settings.solve;
-  BenchResult r;
-  r.name = c.name;
-  r.kind = c.kind;
-  r.subdivisions = c.subdivisions;
-  r.gravity = c.gravity;
+// The Hessian's assembly on 1 thread against all, and on each core alone
+// (the slowest and fastest, and the speed-up they allow), into r.
+template <class Assemble>
+void measure_hessian_threads(const Assemble& assemble_hessian, int reps, BenchResult& r) {
 #ifdef _OPENMP
-  r.threads = omp_get_max_threads();
+  if (r.threads < 2) return;
+  const std::vector<int> cores = allowed_cores(r.threads);
+  // One thread pinned to each core in turn, after an untimed call that
+  // brings the data into that core's cache; then, apart from these (a
+  // worker idle for several calls falls asleep, and waking it costs the
+  // next parallel call), 1 thread and all alternately.
+  std::vector<std::vector<double>> on_core(cores.size());
+  omp_set_num_threads(1);
+  for (int i = 0; i < reps; ++i)
+    for (size_t c = 0; c < cores.size(); ++c) {
+      PinnedThread pin(cores[c]);
+      assemble_hessian();
+      on_core[c].push_back(median_ms(1, assemble_hessian));
+    }
+  std::vector<double> one, all;
+  omp_set_num_threads(r.threads);
+  assemble_hessian();
+  for (int i = 0; i < reps; ++i) {
+    omp_set_num_threads(1);
+    one.push_back(median_ms(1, assemble_hessian));
+    omp_set_num_threads(r.threads);
+    all.push_back(median_ms(1, assemble_hessian));
+  }
+  r.hessian_1thread_ms = median(one);
+  r.hessian_speedup = median(one) / median(all);
+  if (cores.size() != static_cast<size_t>(r.threads)) return;
+  std::vector<double> ms;
+  for (const std::vector<double>& t : on_core) ms.push_back(median(t));
+  r.hessian_slowest_core_ms = *std::max_element(ms.begin(), ms.end());
+  r.hessian_fastest_core_ms = *std::min_element(ms.begin(), ms.end());
+  r.hessian_speedup_ceiling = 0.0;
+  for (double t : ms) r.hessian_speedup_ceiling += r.hessian_fastest_core_ms / t;
+#else
+  (void)assemble_hessian;
+  (void)reps;
+  (void)r;
 #endif
-  LinkageProblem problem = make_problem(c);
-  r.unknowns = problem.linkage().num_dofs();
-  r.free_unknowns = problem.num_free();
+}
+
+// Energy + gradient, Hessian assembly (also on 1 thread and on each core
+// alone) and one factorization of the free Hessian at the start, into r.
+void measure_assembly(LinkageProblem& problem, int reps, BenchResult& r) {
   double sink = 0.0;
   // The problem caches its derivatives until the configuration changes:
   // every timed call starts without them.
@@ -252,98 +215,84 @@ BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
     sink += problem.free_hessian().valuePtr()[0];
   };
   r.hessian_ms = median_ms(reps, assemble_hessian, &r.hessian_cpu_ms);
-#ifdef _OPENMP
-  if (r.threads > 1) {
-    const std::vector<int> cores = allowed_cores(r.threads);
-    // One thread pinned to each core in turn, after an untimed call that
-    // brings the data into that core's cache; then, apart from these (a
-    // worker idle for several calls falls asleep, and waking it costs the
-    // next parallel call), 1 thread and all alternately.
-    std::vector<std::vector<double>> on_core(cores.size());
-    omp_set_num_threads(1);
-    for (int i = 0; i < reps; ++i)
-      for (size_t c = 0; c < cores.size(); ++c) {
-        PinnedThread pin(cores[c]);
-        assemble_hessian();
-        on_core[c].push_back(median_ms(1, assemble_hessian));
-      }
-    std::vector<double> one, all;
-    omp_set_num_threads(r.threads);
-    assemble_hessian();
-    for (int i = 0; i < reps; ++i) {
-      omp_set_num_threads(1);
-      one.push_back(median_ms(1, assemble_hessian));
-      omp_set_num_threads(r.threads);
-      all.push_back(median_ms(1, assemble_hessian));
-    }
-    r.hessian_1thread_ms = median(one);
-    r.hessian_speedup = median(one) / median(all);
-    if (cores.size() == static_cast<size_t>(r.threads)) {
-      std::vector<double> ms;
-      for (const std::vector<double>& t : on_core) ms.push_back(median(t));
-      r.hessian_slowest_core_ms = *std::max_element(ms.begin(), ms.end());
-      r.hessian_fastest_core_ms = *std::min_element(ms.begin(), ms.end());
-      r.hessian_speedup_ceiling = 0.0;
-      for (double t : ms) r.hessian_speedup_ceiling += r.hessian_fastest_core_ms / t;
-    }
-  }
-#endif
+  measure_hessian_threads(assemble_hessian, reps, r);
   const Eigen::SparseMatrix<double> H = problem.free_hessian();
   r.hessian_nonzeros = H.nonZeros();
   r.factorization_ms = factorization_ms(H, problem.free_mass(), reps, &r.factorization_cpu_ms);
   if (!std::isfinite(sink)) std::fprintf(stderr, "non-finite energy\n");
+}
 
-  if (solve) {
-    LinkageObjective objective(problem);
-    NewtonOptions options;
-    options.gradient_tolerance = 1e-6;
-    NewtonSolver solver(objective, options);
-    std::vector<double> seconds, cpu, hessian_s, factorization_s, rest_s;
-    long factorizations = 0;
-    double total = 0.0, total_cpu = 0.0, last_cpu = 0.0, total_factorization = 0.0;
-    NewtonCallbacks callbacks;
-    callbacks.on_iteration = [&](const NewtonReport& report) {
-      const double now = cpu_seconds();
-      if (report.iteration > 0) {
-        seconds.push_back(report.seconds);
-        hessian_s.push_back(report.hessian_seconds);
-        factorization_s.push_back(report.factorization_seconds);
-        rest_s.push_back(report.seconds - report.hessian_seconds - report.factorization_seconds);
-        cpu.push_back(now - last_cpu);  // includes the driver's bookkeeping between reports
-        total += report.seconds;
-        total_factorization += report.factorization_seconds;
-        total_cpu += now - last_cpu;
-        factorizations += report.factorizations;
-      }
-      last_cpu = now;
-    };
-    const NewtonResult result = solver.solve(callbacks);
-    r.iterations = result.iterations;
-    r.solve_s = result.seconds;
-    r.gradient_measure = result.gradient_measure;
-    r.status = result.converged() ? (result.stable ? "converged" : "converged_unstable") : "failed";
-    if (!seconds.empty()) {
-      r.iteration_ms = 1e3 * median(seconds);
-      r.solve_hessian_ms = 1e3 * median(hessian_s);
-      r.solve_factorization_ms = 1e3 * median(factorization_s);
-      r.solve_rest_ms = 1e3 * median(rest_s);
-      r.factorizations_per_iteration = double(factorizations) / double(seconds.size());
-      r.iteration_over_factorizations = 1e3 * total / (double(factorizations) * r.factorization_ms);
-      r.iteration_over_solve_factorizations = total / total_factorization;
-      r.iteration_cpu_ms = 1e3 * median(cpu);
-      r.iteration_over_factorizations_cpu =
-          1e3 * total_cpu / (double(factorizations) * r.factorization_cpu_ms);
+// Newton's relaxation of the problem from its start, timed per iteration
+// (medians of the iterations' own times, and the ratios to the
+// factorizations they perform), into r.
+NewtonResult measure_newton(LinkageProblem& problem, BenchResult& r) {
+  LinkageObjective objective(problem);
+  NewtonOptions options;
+  options.gradient_tolerance = 1e-6;
+  NewtonSolver solver(objective, options);
+  std::vector<double> seconds, cpu, hessian_s, factorization_s, rest_s;
+  long factorizations = 0;
+  double total = 0.0, total_cpu = 0.0, last_cpu = 0.0, total_factorization = 0.0;
+  NewtonCallbacks callbacks;
+  callbacks.on_iteration = [&](const NewtonReport& report) {
+    const double now = cpu_seconds();
+    if (report.iteration > 0) {
+      seconds.push_back(report.seconds);
+      hessian_s.push_back(report.hessian_seconds);
+      factorization_s.push_back(report.factorization_seconds);
+      rest_s.push_back(report.seconds - report.hessian_seconds - report.factorization_seconds);
+      cpu.push_back(now - last_cpu);  // includes the driver's bookkeeping between reports
+      total += report.seconds;
+      total_factorization += report.factorization_seconds;
+      total_cpu += now - last_cpu;
+      factorizations += report.factorizations;
     }
-    r.peak_rss_mb = peak_rss_mb();
-    if (result.converged()) {
-      deployment_step(problem, r);
-      r.deployment_peak_rss_mb = peak_rss_mb();
-    }
-    if (settings.solvers) run_other_solvers(c, settings, r);
-  } else {
+    last_cpu = now;
+  };
+  const NewtonResult result = solver.solve(callbacks);
+  r.iterations = result.iterations;
+  r.solve_s = result.seconds;
+  r.gradient_measure = result.gradient_measure;
+  r.status = result.converged() ? (result.stable ? "converged" : "converged_unstable") : "failed";
+  if (seconds.empty()) return result;
+  r.iteration_ms = 1e3 * median(seconds);
+  r.solve_hessian_ms = 1e3 * median(hessian_s);
+  r.solve_factorization_ms = 1e3 * median(factorization_s);
+  r.solve_rest_ms = 1e3 * median(rest_s);
+  r.factorizations_per_iteration = double(factorizations) / double(seconds.size());
+  r.iteration_over_factorizations = 1e3 * total / (double(factorizations) * r.factorization_ms);
+  r.iteration_over_solve_factorizations = total / total_factorization;
+  r.iteration_cpu_ms = 1e3 * median(cpu);
+  r.iteration_over_factorizations_cpu =
+      1e3 * total_cpu / (double(factorizations) * r.factorization_cpu_ms);
+  return result;
+}
+
+BenchResult run_case(const BenchCase& c, const BenchSettings& settings) {
+  BenchResult r;
+  r.name = c.name;
+  r.kind = c.kind;
+  r.subdivisions = c.subdivisions;
+  r.gravity = c.gravity;
+#ifdef _OPENMP
+  r.threads = omp_get_max_threads();
+#endif
+  LinkageProblem problem = make_problem(c);
+  r.unknowns = problem.linkage().num_dofs();
+  r.free_unknowns = problem.num_free();
+  measure_assembly(problem, settings.reps, r);
+  if (!settings.solve) {
     r.status = "not_solved";
     r.peak_rss_mb = peak_rss_mb();
+    return r;
   }
+  const NewtonResult result = measure_newton(problem, r);
+  r.peak_rss_mb = peak_rss_mb();
+  if (result.converged()) {
+    deployment_step(problem, r);
+    r.deployment_peak_rss_mb = peak_rss_mb();
+  }
+  if (settings.solvers) run_other_solvers(c, settings, r);
   return r;
 }
 
@@ -386,150 +335,48 @@ BenchResult run_isolated(const BenchCase& c, const BenchSettings& settings) {
   return r;
 }
 
-std::vector<int> parse_ints(const std::string& text) {
-  std::vector<int> out;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) out.push_back(std::stoi(item));
-  return out;
-}
+// xshell_bench's command line.
+struct BenchArguments {
+  CaseSelection cases;
+  BenchSettings settings;
+  std::string csv = "xshell_bench.csv";
+};
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  // The OpenMP wait policy is left as the program's users get it (libgomp's
-  // default: spin a while, then sleep). Forcing PASSIVE, as this program
-  // once did, made every barrier a sleep and a wake-up: energy + gradient on
-  // 2 threads 2-4x slower than on 1 below 10^4 unknowns.
-  CLI::App app{"xshell_bench: cost of Newton iterations, assembly and factorization"};
-  bool quick = false, no_solve = false, solvers = false;
-  long kinetic_limit = 200000;
-  int reps = 5;
-  std::string graphs = "designs", subdivisions = "8,10", grids = "4,8,14,25,44",
-              csv = "xshell_bench.csv";
-  std::string data = std::string(XSHELL_SOURCE_DIR) + "/../shared/data/elasticrods";
-  std::string samples = "all";
+void add_options(CLI::App& app, BenchArguments& args, bool& quick, bool& no_solve) {
   app.add_flag("--quick", quick, "two small designs at subdivision 8, grids 4,8,14, 3 repetitions");
-  app.add_option("--reps", reps, "repetitions of each timing (median reported)")
+  app.add_option("--reps", args.settings.reps, "repetitions of each timing (median reported)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--graphs", graphs,
+  app.add_option("--graphs", args.cases.graphs,
                  "\"designs\" (the five architectural designs, mm), \"all\", \"none\", or names "
                  "(file stems or "
                  "prefixes), comma-separated");
-  app.add_option("--subdivisions", subdivisions, "subdivisions for the graphs, comma-separated");
-  app.add_option("--grids", grids,
+  app.add_option("--subdivisions", args.cases.subdivisions,
+                 "subdivisions for the graphs, comma-separated");
+  app.add_option("--grids", args.cases.grids,
                  "grid sizes (crossings per side), comma-separated; empty for none");
   app.add_flag("--no-solve", no_solve, "skip the Newton solves");
-  app.add_flag("--solvers", solvers,
+  app.add_flag("--solvers", args.settings.solvers,
                "also relax by damped dynamics and kinetic damping, with ratios to Newton");
-  app.add_option("--kinetic-limit", kinetic_limit, "iteration limit of kinetic damping")
+  app.add_option("--kinetic-limit", args.settings.kinetic_limit,
+                 "iteration limit of kinetic damping")
       ->check(CLI::PositiveNumber);
-  app.add_option("--samples", samples,
+  app.add_option("--samples", args.cases.samples,
                  "\"all\": the bundled samples (samples/*.obj) with samples/grid_gravity.json's "
                  "settings; \"none\"")
       ->check(CLI::IsMember({"all", "none"}));
-  app.add_option("--csv", csv, "CSV file to write");
-  app.add_option("--data", data, "folder of the real linkage graphs");
-  CLI11_PARSE(app, argc, argv);
-  if (quick) {
-    reps = std::min(reps, 3);
-    if (app.count("--graphs") == 0) graphs = "manta_ray,darth_vader";
-    if (app.count("--subdivisions") == 0) subdivisions = "8";
-    if (app.count("--grids") == 0) grids = "4,8,14";
-  }
+  app.add_option("--csv", args.csv, "CSV file to write");
+  app.add_option("--data", args.cases.data, "folder of the real linkage graphs");
+}
 
-  std::vector<BenchCase> cases;
-  // The bundled sample's configuration: material, supports, loads and
-  // subdivisions of the samples and of the small shared graphs.
-  const Config sample_config =
-      read_config((fs::path(XSHELL_SOURCE_DIR) / "samples" / "grid_gravity.json").string());
-  const std::vector<std::string> designs = {"manta_ray", "darth_vader", "scary_face", "hourglass",
-                                            "large"};
-  if (graphs != "none") {
-    std::vector<std::string> wanted;
-    if (graphs == "designs") wanted = designs;
-    if (graphs != "designs" && graphs != "all") {
-      std::stringstream in(graphs);
-      for (std::string item; std::getline(in, item, ',');) wanted.push_back(item);
-    }
-    if (!fs::is_directory(data)) {
-      std::printf("graphs skipped: %s is absent\n", data.c_str());
-    } else {
-      std::vector<fs::path> files;
-      for (const auto& entry : fs::directory_iterator(data))
-        if (entry.path().extension() == ".obj") files.push_back(entry.path());
-      std::vector<std::pair<size_t, fs::path>> chosen;
-      for (const auto& path : files) {
-        const std::string stem = path.stem().string();
-        if (graphs == "all") chosen.emplace_back(0, path);
-        for (size_t k = 0; k < wanted.size(); ++k)
-          if (stem.rfind(wanted[k], 0) == 0) chosen.emplace_back(k, path);
-      }
-      std::sort(chosen.begin(), chosen.end());
-      for (int n : parse_ints(subdivisions))
-        for (const auto& [order, path] : chosen) {
-          BenchCase c;
-          c.name = path.stem().string().substr(0, 24);
-          c.kind = "graph";
-          c.graph = read_obj(path.string());
-          c.subdivisions = n;
-          const bool design = std::any_of(
-              designs.begin(), designs.end(),
-              [&](const std::string& d) { return path.stem().string().rfind(d, 0) == 0; });
-          if (!design) {
-            // The small graphs are of order 1, not millimetres: the samples'
-            // laths (metres), their input shape as rest shape, gravity and
-            // the four corners pinned, as the validation runs use them.
-            Config config = sample_config;
-            config.subdivisions = n;
-            config.rest_shape = RestShape::Input;
-            config.supports.clear();
-            for (int v : corner_vertices(c.graph))
-              config.supports.push_back({v, {Fixed::Position}});
-            config.loads.forces.clear();
-            c.setup = std::make_shared<const ProblemSetup>(make_problem_setup(config, c.graph));
-            c.gravity = c.setup->statics.gravity.squaredNorm() > 0.0;
-          }
-          cases.push_back(c);
-        }
-    }
-  }
-  if (samples == "all") {
-    // Each sample with the material, supports and loads of grid_gravity.json.
-    const fs::path folder = fs::path(XSHELL_SOURCE_DIR) / "samples";
-    const Config& config = sample_config;
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(folder))
-      if (entry.path().extension() == ".obj") files.push_back(entry.path());
-    std::sort(files.begin(), files.end());
-    for (const auto& path : files) {
-      BenchCase c;
-      c.name = "samples/" + path.stem().string();
-      c.kind = "sample";
-      LineGraph graph;
-      try {
-        graph = read_obj(path.string());
-      } catch (const InputError& e) {  // a surface (a design's target), not a linkage
-        std::printf("skipped %s: %s\n", c.name.c_str(), e.what());
-        continue;
-      }
-      c.setup = std::make_shared<const ProblemSetup>(make_problem_setup(config, graph));
-      c.subdivisions = c.setup->options.subdivisions;
-      c.gravity = c.setup->statics.gravity.squaredNorm() > 0.0;
-      cases.push_back(c);
-    }
-  }
-  for (int n : parse_ints(grids))
-    for (bool gravity : {false, true}) {
-      BenchCase c;
-      c.name = "grid" + std::to_string(n) + "x" + std::to_string(n);
-      c.kind = "grid";
-      c.graph = wavy_grid(n);
-      c.subdivisions = 8;
-      c.gravity = gravity;
-      cases.push_back(c);
-    }
+// --quick's smaller defaults for the options not given.
+void apply_quick(const CLI::App& app, BenchArguments& args) {
+  args.settings.reps = std::min(args.settings.reps, 3);
+  if (app.count("--graphs") == 0) args.cases.graphs = "manta_ray,darth_vader";
+  if (app.count("--subdivisions") == 0) args.cases.subdivisions = "8";
+  if (app.count("--grids") == 0) args.cases.grids = "4,8,14";
+}
 
+void print_header(size_t cases, int reps) {
   int threads = 1;
 #ifdef _OPENMP
   threads = omp_get_max_threads();
@@ -542,16 +389,36 @@ int main(int argc, char** argv) {
       "factorizations; it/f: iteration / its factorizations (wall; factorization timed alone), "
       "it/fs: the same with "
       "the factorizations as timed inside the solve, cpu: it/f in CPU time\n",
-      cases.size(), reps, threads,
+      cases, reps, threads,
       std::getenv("OMP_WAIT_POLICY") != nullptr ? std::getenv("OMP_WAIT_POLICY") : "default");
   std::printf("BLAS: %s\n", loaded_blas().c_str());
   print_row_header();
-  std::ofstream out(csv);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // The OpenMP wait policy is left as the program's users get it (libgomp's
+  // default: spin a while, then sleep). Forcing PASSIVE, as this program
+  // once did, made every barrier a sleep and a wake-up: energy + gradient on
+  // 2 threads 2-4x slower than on 1 below 10^4 unknowns.
+  CLI::App app{"xshell_bench: cost of Newton iterations, assembly and factorization"};
+  BenchArguments args;
+  args.cases.source_dir = XSHELL_SOURCE_DIR;
+  args.cases.data = std::string(XSHELL_SOURCE_DIR) + "/../shared/data/elasticrods";
+  bool quick = false, no_solve = false;
+  add_options(app, args, quick, no_solve);
+  CLI11_PARSE(app, argc, argv);
+  if (quick) apply_quick(app, args);
+  args.settings.solve = !no_solve;
+
+  const std::vector<BenchCase> cases = collect_cases(args.cases);
+  print_header(cases.size(), args.settings.reps);
+  std::ofstream out(args.csv);
   out << kColumns << "\n";
   std::vector<BenchResult> results;
-  const BenchSettings settings{reps, !no_solve, solvers, kinetic_limit};
   for (const BenchCase& c : cases) {
-    BenchResult r = run_isolated(c, settings);
+    BenchResult r = run_isolated(c, args.settings);
     print_row(r);
     out << to_csv(r) << "\n";
     out.flush();
@@ -559,7 +426,7 @@ int main(int argc, char** argv) {
   }
 
   print_grid_slopes(results);
-  if (solvers && !no_solve) print_solver_comparison(results);
-  std::printf("wrote %s\n", csv.c_str());
+  if (args.settings.solvers && args.settings.solve) print_solver_comparison(results);
+  std::printf("wrote %s\n", args.csv.c_str());
   return 0;
 }
