@@ -423,6 +423,79 @@ nlohmann::json material_json(const MaterialConfig& m) {
   if (m.strength) material["strength"] = *m.strength;
   return material;
 }
+
+nlohmann::json config_rods_json(const std::vector<RodMaterial>& rods) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const RodMaterial& r : rods) {
+    nlohmann::json item = {{"material", material_json(r.material)}};
+    if (r.selector == RodSelector::Rod) item["rod"] = r.rod;
+    if (r.selector == RodSelector::Edges) item["edges"] = r.edges;
+    if (r.selector == RodSelector::Vertices) item["vertices"] = r.vertices;
+    out.push_back(item);
+  }
+  return out;
+}
+
+nlohmann::json config_supports_json(const std::vector<Support>& supports) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Support& s : supports) {
+    nlohmann::json fix = nlohmann::json::array();
+    for (Fixed f : s.fix) fix.push_back(name_of(f, kFixed));
+    nlohmann::json item = {{"fix", fix}, {"displacement", vector_json(s.displacement)}};
+    if (s.select)
+      item["select"] = select_json(*s.select);
+    else
+      item["vertex"] = s.vertex;
+    out.push_back(item);
+  }
+  return out;
+}
+
+nlohmann::json config_loads_json(const Loads& loads) {
+  nlohmann::json forces = nlohmann::json::array();
+  for (const PointForce& f : loads.forces)
+    forces.push_back({{"vertex", f.vertex}, {"force", vector_json(f.force)}});
+  nlohmann::json line_loads = nlohmann::json::array();
+  for (const LineLoadConfig& l : loads.line_loads) line_loads.push_back(line_load_json(l));
+  return {{"gravity", vector_json(loads.gravity)}, {"forces", forces}, {"line_loads", line_loads}};
+}
+
+nlohmann::json config_solver_json(const SolverOptions& s) {
+  return {{"method", name_of(s.method, kMethods)},
+          {"gradient_tolerance", s.gradient_tolerance},
+          {"max_iterations", s.max_iterations},
+          {"line_search", name_of(s.line_search, kLineSearches)},
+          {"mass", name_of(s.mass, kMasses)},
+          {"damping", s.damping ? nlohmann::json(*s.damping) : nlohmann::json("auto")},
+          {"first_order", s.first_order},
+          {"start", name_of(s.start, kStarts)},
+          {"max_steps", s.step_limit()},
+          {"escape_saddles", s.escape_saddles},
+          {"buckling_direction", vector_json(s.buckling_direction)}};
+}
+
+nlohmann::json config_output_json(const OutputOptions& o) {
+  return {{"directory", o.directory},
+          {"every", o.every},
+          {"max_steps", o.max_steps},
+          {"format", name_of(o.format, kFormats)},
+          {"compression", name_of(o.compression, kCompressions)},
+          {"solids", toggle_json(o.solids)},
+          {"progress", toggle_json(o.progress)}};
+}
+
+nlohmann::json config_deployment_json(const Deployment& d) {
+  nlohmann::json deployment = {{"steps", d.steps}};
+  if (d.largest_step > 0.0) deployment["largest_step"] = d.largest_step;
+  if (d.target == DeploymentTarget::AverageOpeningAngle) {
+    deployment["average_opening_angle"] = d.average_opening_angle;
+  } else {
+    deployment["joint_angles"] = nlohmann::json::array();
+    for (const JointAngle& a : d.joint_angles)
+      deployment["joint_angles"].push_back({{"vertex", a.vertex}, {"angle", a.angle}});
+  }
+  return deployment;
+}
 }  // namespace
 
 int conflicting_component(const Support& a, const Support& b) {
@@ -442,64 +515,17 @@ std::string support_conflict(int vertex, const std::string& earlier_key, const S
 }
 
 nlohmann::json to_json(const Config& c) {
-  const nlohmann::json material = material_json(c.material);
-  nlohmann::json rods = nlohmann::json::array();
-  for (const RodMaterial& r : c.rods) {
-    nlohmann::json item = {{"material", material_json(r.material)}};
-    if (r.selector == RodSelector::Rod) item["rod"] = r.rod;
-    if (r.selector == RodSelector::Edges) item["edges"] = r.edges;
-    if (r.selector == RodSelector::Vertices) item["vertices"] = r.vertices;
-    rods.push_back(item);
-  }
-
-  nlohmann::json supports = nlohmann::json::array();
-  for (const Support& s : c.supports) {
-    nlohmann::json fix = nlohmann::json::array();
-    for (Fixed f : s.fix) fix.push_back(name_of(f, kFixed));
-    nlohmann::json item = {{"fix", fix}, {"displacement", vector_json(s.displacement)}};
-    if (s.select)
-      item["select"] = select_json(*s.select);
-    else
-      item["vertex"] = s.vertex;
-    supports.push_back(item);
-  }
-  nlohmann::json forces = nlohmann::json::array();
-  for (const PointForce& f : c.loads.forces)
-    forces.push_back({{"vertex", f.vertex}, {"force", vector_json(f.force)}});
-  nlohmann::json line_loads = nlohmann::json::array();
-  for (const LineLoadConfig& l : c.loads.line_loads) line_loads.push_back(line_load_json(l));
-
-  const SolverOptions& s = c.solver;
   nlohmann::json j = {
       {"linkage", c.linkage},
       {"subdivisions", c.subdivisions},
       {"rest_shape", name_of(c.rest_shape, kRestShapes)},
       {"joints", name_of(c.joints, kJointModels)},
-      {"material", material},
-      {"rods", rods},
-      {"supports", supports},
-      {"loads",
-       {{"gravity", vector_json(c.loads.gravity)}, {"forces", forces}, {"line_loads", line_loads}}},
-      {"solver",
-       {{"method", name_of(s.method, kMethods)},
-        {"gradient_tolerance", s.gradient_tolerance},
-        {"max_iterations", s.max_iterations},
-        {"line_search", name_of(s.line_search, kLineSearches)},
-        {"mass", name_of(s.mass, kMasses)},
-        {"damping", s.damping ? nlohmann::json(*s.damping) : nlohmann::json("auto")},
-        {"first_order", s.first_order},
-        {"start", name_of(s.start, kStarts)},
-        {"max_steps", s.step_limit()},
-        {"escape_saddles", s.escape_saddles},
-        {"buckling_direction", vector_json(s.buckling_direction)}}},
-      {"output",
-       {{"directory", c.output.directory},
-        {"every", c.output.every},
-        {"max_steps", c.output.max_steps},
-        {"format", name_of(c.output.format, kFormats)},
-        {"compression", name_of(c.output.compression, kCompressions)},
-        {"solids", toggle_json(c.output.solids)},
-        {"progress", toggle_json(c.output.progress)}}},
+      {"material", material_json(c.material)},
+      {"rods", config_rods_json(c.rods)},
+      {"supports", config_supports_json(c.supports)},
+      {"loads", config_loads_json(c.loads)},
+      {"solver", config_solver_json(c.solver)},
+      {"output", config_output_json(c.output)},
       {"analysis",
        {{"modes", c.analysis.modes},
         {"buckling", c.analysis.buckling},
@@ -509,18 +535,7 @@ nlohmann::json to_json(const Config& c) {
   if (!c.rest_lengths.empty()) j["rest_lengths"] = c.rest_lengths;
   if (!c.units.length.empty()) j["units"]["length"] = c.units.length;
   if (!c.units.force.empty()) j["units"]["force"] = c.units.force;
-  if (const auto& d = c.deployment) {
-    nlohmann::json deployment = {{"steps", d->steps}};
-    if (d->largest_step > 0.0) deployment["largest_step"] = d->largest_step;
-    if (d->target == DeploymentTarget::AverageOpeningAngle) {
-      deployment["average_opening_angle"] = d->average_opening_angle;
-    } else {
-      deployment["joint_angles"] = nlohmann::json::array();
-      for (const JointAngle& a : d->joint_angles)
-        deployment["joint_angles"].push_back({{"vertex", a.vertex}, {"angle", a.angle}});
-    }
-    j["deployment"] = deployment;
-  }
+  if (c.deployment) j["deployment"] = config_deployment_json(*c.deployment);
   if (c.design) j["design"] = design_json(*c.design);
   return j;
 }

@@ -7,7 +7,7 @@ namespace xshell {
 
 namespace {
 
-nlohmann::json supports_json(const std::vector<std::vector<int>>& support_vertices) {
+nlohmann::json summary_supports_json(const std::vector<std::vector<int>>& support_vertices) {
   nlohmann::json out = nlohmann::json::array();
   for (std::size_t i = 0; i < support_vertices.size(); ++i)
     out.push_back({{"entry", i}, {"vertices", support_vertices[i]}});
@@ -25,17 +25,14 @@ nlohmann::json applied(const GraphTransform& t) {
   return out;
 }
 
-}  // namespace
+// A value, or null when there is none.
+template <class T>
+nlohmann::json optional_json(const std::optional<T>& x) {
+  return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
+}
 
-nlohmann::json to_json(const RunSummary& s) {
-  using nlohmann::json;
-  json vertices = json::array(), angles = json::array(), history = json::array();
-  for (const auto& v : s.vertices) vertices.push_back({v.x(), v.y(), v.z()});
-  for (const auto& a : s.opening_angles) angles.push_back(a ? json(*a) : json(nullptr));
-  json outside = json::array();
-  for (const auto& j : s.joints_outside_opening_range)
-    outside.push_back({{"vertex", j.vertex}, {"angle", j.angle}});
-  auto optional = [](const std::optional<double>& x) { return x ? json(*x) : json(nullptr); };
+nlohmann::json history_json(const RunSummary& s) {
+  nlohmann::json history = nlohmann::json::array();
   for (const auto& h : s.history)
     history.push_back({{"iteration", h.iteration},
                        {"time", h.time},
@@ -44,19 +41,60 @@ nlohmann::json to_json(const RunSummary& s) {
                        {"step", h.step},
                        {"kinetic_energy", h.kinetic_energy},
                        {"seconds", h.seconds}});
-  json saddles = json::array();
+  return history;
+}
+
+nlohmann::json saddles_json(const RunSummary& s) {
+  nlohmann::json saddles = nlohmann::json::array();
   for (const auto& a : s.saddles_escaped)
     saddles.push_back({{"energy", a.energy},
                        {"lowest_eigenvalue", a.lowest_eigenvalue},
-                       {"step", a.step ? json(*a.step) : json(nullptr)}});
+                       {"step", optional_json(a.step)}});
+  return saddles;
+}
+
+// The final shape: vertices, opening angles and the joints outside (0, pi).
+void add_shape(const RunSummary& s, nlohmann::json& out) {
+  using nlohmann::json;
+  json vertices = json::array(), angles = json::array(), outside = json::array();
+  for (const auto& v : s.vertices) vertices.push_back({v.x(), v.y(), v.z()});
+  for (const auto& a : s.opening_angles) angles.push_back(optional_json(a));
+  for (const auto& j : s.joints_outside_opening_range)
+    outside.push_back({{"vertex", j.vertex}, {"angle", j.angle}});
+  out["vertices"] = vertices;
+  out["opening_angles"] = angles;
+  out["min_opening_angle"] = optional_json(s.min_opening_angle);
+  out["max_opening_angle"] = optional_json(s.max_opening_angle);
+  out["joints_outside_opening_range"] = outside;
+}
+
+nlohmann::json summary_deployment_json(const DeploymentSummary& d) {
+  return {{"actuation", d.actuation},
+          {"status", d.status},
+          {"steps", d.steps},
+          {"failed_attempts", d.failed_attempts},
+          {"iterations", d.iterations},
+          {"start_average_angle", d.start_average_angle},
+          {"target_average_angle", optional_json(d.target_average_angle)},
+          {"final_average_angle", d.final_average_angle},
+          {"final_torque", d.final_torque},
+          {"branch_switch_step", optional_json(d.branch_switch_step)},
+          {"table", d.table},
+          {"plot", optional_json(d.plot)}};
+}
+
+}  // namespace
+
+nlohmann::json to_json(const RunSummary& s) {
+  using nlohmann::json;
   json out = {{"status", s.status},
               {"reason", s.reason},
               {"converged", s.converged},
-              {"stable", s.stable ? json(*s.stable) : json(nullptr)},
+              {"stable", optional_json(s.stable)},
               {"interrupted", s.interrupted},
               {"solver", s.solver},
               {"iterations", s.iterations},
-              {"simulated_time", s.simulated_time ? json(*s.simulated_time) : json(nullptr)},
+              {"simulated_time", optional_json(s.simulated_time)},
               {"wall_seconds", s.wall_seconds},
               {"timings",
                {{"load", s.timings.load},
@@ -74,35 +112,16 @@ nlohmann::json to_json(const RunSummary& s) {
                 {"bending", s.energy.bending},
                 {"twisting", s.energy.twisting},
                 {"external", s.energy.external}}},
-              {"vertices", vertices},
-              {"opening_angles", angles},
-              {"min_opening_angle", optional(s.min_opening_angle)},
-              {"max_opening_angle", optional(s.max_opening_angle)},
-              {"joints_outside_opening_range", outside},
               {"warnings", s.warnings},
-              {"default_support", s.default_support ? json(*s.default_support) : json(nullptr)},
-              {"supports", supports_json(s.support_vertices)},
+              {"default_support", optional_json(s.default_support)},
+              {"supports", summary_supports_json(s.support_vertices)},
               {"transform", s.transform.is_identity() ? json(nullptr) : applied(s.transform)},
-              {"saddles_escaped", saddles},
-              {"history", history},
+              {"saddles_escaped", saddles_json(s)},
+              {"history", history_json(s)},
               {"configuration", s.configuration},
               {"version", s.version}};
-  if (const auto& d = s.deployment) {
-    out["deployment"] = {{"actuation", d->actuation},
-                         {"status", d->status},
-                         {"steps", d->steps},
-                         {"failed_attempts", d->failed_attempts},
-                         {"iterations", d->iterations},
-                         {"start_average_angle", d->start_average_angle},
-                         {"target_average_angle",
-                          d->target_average_angle ? json(*d->target_average_angle) : json(nullptr)},
-                         {"final_average_angle", d->final_average_angle},
-                         {"final_torque", d->final_torque},
-                         {"branch_switch_step",
-                          d->branch_switch_step ? json(*d->branch_switch_step) : json(nullptr)},
-                         {"table", d->table},
-                         {"plot", d->plot ? json(*d->plot) : json(nullptr)}};
-  }
+  add_shape(s, out);
+  if (s.deployment) out["deployment"] = summary_deployment_json(*s.deployment);
   for (const auto& [key, value] : s.engineering.items()) out[key] = value;
   return out;
 }
