@@ -70,44 +70,40 @@ CLI::App* add_design(CLI::App& app, DesignArguments& design) {
   return c;
 }
 
-Subcommands add_subcommands(CLI::App& app, CommandLine& line) {
-  Subcommands s;
-  RelaxArguments& relax = line.relax;
-  s.relax = app.add_subcommand("relax", "Find the static equilibrium of a linkage");
-  s.relax->add_option("config", relax.config, "Configuration (JSON)")
-      ->required()
+CLI::App* add_relax(CLI::App& app, RelaxArguments& relax) {
+  CLI::App* c = app.add_subcommand("relax", "Find the static equilibrium of a linkage");
+  c->add_option("config", relax.config, "Configuration (JSON)")->required()->check(kNonEmptyPath);
+  c->add_option("--solver", relax.solver,
+                "newton | dynamics | kinetic-damping (overrides solver.method)");
+  c->add_option("--out", relax.out, "Output directory (overrides output.directory)")
       ->check(kNonEmptyPath);
-  s.relax->add_option("--solver", relax.solver,
-                      "newton | dynamics | kinetic-damping (overrides solver.method)");
-  s.relax->add_option("--out", relax.out, "Output directory (overrides output.directory)")
+  c->add_option("--init", relax.init, "Start from a state.json written by an earlier run")
       ->check(kNonEmptyPath);
-  s.relax->add_option("--init", relax.init, "Start from a state.json written by an earlier run")
-      ->check(kNonEmptyPath);
-  s.relax
-      ->add_option("--grace", relax.grace,
-                   "Seconds an iteration may go on after SIGINT/SIGTERM (default 10)")
+  c->add_option("--grace", relax.grace,
+                "Seconds an iteration may go on after SIGINT/SIGTERM (default 10)")
       ->check(kFiniteNumber)
       ->check(CLI::Range(0.0, 86400.0));
-  CLI::Option* quiet = s.relax->add_flag("--quiet", relax.quiet, "No progress lines");
-  CLI::Option* verbose = s.relax->add_flag("--verbose", relax.verbose,
-                                           "Progress lines even when stderr is not a terminal");
-  s.relax
-      ->add_option("--progress", relax.progress,
-                   "auto (default: text on a terminal, else plain) | text (a line per "
-                   "iteration) | plain (phases, a line every 5 s at most) | json (an object "
-                   "per line) | off")
+  CLI::Option* quiet = c->add_flag("--quiet", relax.quiet, "No progress lines");
+  CLI::Option* verbose =
+      c->add_flag("--verbose", relax.verbose, "Progress lines even when stderr is not a terminal");
+  c->add_option("--progress", relax.progress,
+                "auto (default: text on a terminal, else plain) | text (a line per "
+                "iteration) | plain (phases, a line every 5 s at most) | json (an object "
+                "per line) | off")
       ->check(CLI::IsMember({"auto", "text", "plain", "json", "off"}))
       ->excludes(quiet)
       ->excludes(verbose);
+  return c;
+}
 
-  RenderArguments& render = line.render;
-  s.render = app.add_subcommand("render", "Render a run's final state (or .vtp files) to a PNG");
-  s.render->add_option("inputs", render.inputs, "An output directory of `relax`, or .vtp files")
+CLI::App* add_render(CLI::App& app, RenderArguments& render) {
+  CLI::App* c = app.add_subcommand("render", "Render a run's final state (or .vtp files) to a PNG");
+  c->add_option("inputs", render.inputs, "An output directory of `relax`, or .vtp files")
       ->required();
-  s.render->add_option("--out", render.png, "PNG file to write")->required()->check(kNonEmptyPath);
-  s.render->add_option("--width", render.width, "Picture width in pixels");
-  s.render->add_option("--height", render.height, "Picture height in pixels");
-  s.render->add_option_function<std::string>(
+  c->add_option("--out", render.png, "PNG file to write")->required()->check(kNonEmptyPath);
+  c->add_option("--width", render.width, "Picture width in pixels");
+  c->add_option("--height", render.height, "Picture height in pixels");
+  c->add_option_function<std::string>(
       "--color",
       [&render](const std::string& name) {
         render.color = name;
@@ -115,27 +111,35 @@ Subcommands add_subcommands(CLI::App& app, CommandLine& line) {
       },
       "Point or cell array to colour by (default bending_density where there is one; \"\" for "
       "none)");
-  s.render->add_option("--view", render.view, "iso | top | front | side (default iso)")
+  c->add_option("--view", render.view, "iso | top | front | side (default iso)")
       ->check(CLI::IsMember({"iso", "top", "front", "side"}));
-  s.render
-      ->add_option_function<double>(
-          "--scale-deflection", [&render](const double& k) { render.scale_deflection = k; },
-          "Draw the displacement from the run's first step K times (K >= 0)")
+  c->add_option_function<double>(
+       "--scale-deflection", [&render](const double& k) { render.scale_deflection = k; },
+       "Draw the displacement from the run's first step K times (K >= 0)")
       ->check(kFiniteNumber)
       ->check(CLI::NonNegativeNumber);
+  return c;
+}
 
-  FabricateArguments& fabricate = line.fabricate;
-  s.fabricate = app.add_subcommand(
+CLI::App* add_fabricate(CLI::App& app, FabricateArguments& fabricate) {
+  CLI::App* c = app.add_subcommand(
       "fabricate", "Write the fabrication data (cut lengths, drill stations) without solving");
-  s.fabricate->add_option("config", fabricate.config, "Configuration (JSON)")
+  c->add_option("config", fabricate.config, "Configuration (JSON)")
       ->required()
       ->check(kNonEmptyPath);
-  s.fabricate
-      ->add_option("--init", fabricate.init,
-                   "Take the state from a state.json written by an earlier run")
+  c->add_option("--init", fabricate.init,
+                "Take the state from a state.json written by an earlier run")
       ->check(kNonEmptyPath);
-  s.fabricate->add_option("--out", fabricate.out, "Output directory (overrides output.directory)")
+  c->add_option("--out", fabricate.out, "Output directory (overrides output.directory)")
       ->check(kNonEmptyPath);
+  return c;
+}
+
+Subcommands add_subcommands(CLI::App& app, CommandLine& line) {
+  Subcommands s;
+  s.relax = add_relax(app, line.relax);
+  s.render = add_render(app, line.render);
+  s.fabricate = add_fabricate(app, line.fabricate);
   s.design = add_design(app, line.design);
   return s;
 }

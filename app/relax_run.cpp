@@ -406,6 +406,18 @@ void load_run(const RelaxRequest& request, LoadedRun& run) {
   }
 }
 
+namespace {
+
+// The exit status of a run that solved: its outputs failed, it was
+// interrupted, or it converged or not.
+int relax_exit_status(const std::string& output_error, const RunSummary& summary) {
+  if (!output_error.empty()) return kExitOutputFailed;
+  if (summary.interrupted) return kExitInterrupted;
+  return summary.converged ? kExitConverged : kExitNotConverged;
+}
+
+}  // namespace
+
 RelaxOutcome relax(const RelaxRequest& request, const RelaxHooks& hooks) {
   const auto start = std::chrono::steady_clock::now();
   keep_freed_heap();
@@ -458,12 +470,7 @@ RelaxOutcome relax(const RelaxRequest& request, const RelaxHooks& hooks) {
   outcome.error = write_final_outputs(run, solved, out, summary, progress);
   progress.finish(summary.status, summary.timings, summary.wall_seconds);
   if (request.keep_state) outcome.state = state_text(run.problem->linkage(), run.setup.origin);
-  if (!outcome.error.empty())
-    outcome.exit_status = kExitOutputFailed;
-  else if (summary.interrupted)
-    outcome.exit_status = kExitInterrupted;
-  else
-    outcome.exit_status = summary.converged ? kExitConverged : kExitNotConverged;
+  outcome.exit_status = relax_exit_status(outcome.error, summary);
   outcome.summary = std::move(summary);
   return outcome;
 }

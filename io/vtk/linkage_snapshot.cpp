@@ -40,63 +40,76 @@ template <class T>
 void reverse_all(std::vector<T>& v) {
   std::reverse(v.begin(), v.end());
 }
+
+// A rod's section: that of its first segment (sections are set per full rod
+// by the configuration's "rods").
+SectionSnapshot rod_section(const RodLinkage& linkage, const RodChain& rod) {
+  const Material& material =
+      rod.segments.empty() ? linkage.options().material : linkage.segment_material(rod.segments[0]);
+  SectionSnapshot section;
+  section.shape = material.section.shape == SectionShape::Rectangle
+                      ? SectionSnapshot::Shape::Rectangle
+                      : SectionSnapshot::Shape::Ellipse;
+  section.width = material.section.width;
+  section.height = material.section.height;
+  return section;
+}
+
+// Appends segment seg's sample s (in the rod's direction) to the rod.
+// Consecutive segments share the terminal edge at their joint: it (and its
+// two nodes) is skipped in the later one, whose vertex quantities at the
+// node past the joint are kept.
+void append_segment(const SegmentSample& s, int seg, const Eigen::Vector3d& origin,
+                    RodSnapshot& out) {
+  const size_t skip = out.nodes.empty() ? 0 : 2;
+  if (skip) {
+    out.curvature.back() = s.curvature[1];
+    out.twist.back() = s.twist[1];
+    out.bending_density.back() = s.bending[1];
+    out.twisting_density.back() = s.twisting[1];
+  }
+  for (size_t i = skip; i < s.nodes.size(); ++i) {
+    out.nodes.push_back(s.nodes[i] + origin);
+    out.curvature.push_back(s.curvature[i]);
+    out.twist.push_back(s.twist[i]);
+    out.bending_density.push_back(s.bending[i]);
+    out.twisting_density.push_back(s.twisting[i]);
+  }
+  for (size_t j = skip ? 1 : 0; j < s.d1.size(); ++j) {
+    out.edge_segment.push_back(seg);
+    out.d1.push_back(s.d1[j]);
+    out.d2.push_back(s.d2[j]);
+    out.stretching_density.push_back(s.stretching[j]);
+  }
+}
+
+RodSnapshot rod_snapshot(const RodLinkage& linkage, int r, const Eigen::Vector3d& origin) {
+  const RodChain& rod = linkage.topology().rods[r];
+  RodSnapshot out;
+  out.rod_id = r;
+  out.section = rod_section(linkage, rod);
+  for (size_t k = 0; k < rod.segments.size(); ++k) {
+    const int seg = rod.segments[k];
+    SegmentSample s = sample(linkage.segment(seg));
+    if (!rod.forward[k]) {
+      for (auto* v : {&s.nodes, &s.d1, &s.d2}) reverse_all(*v);
+      for (auto* v : {&s.stretching, &s.curvature, &s.twist, &s.bending, &s.twisting})
+        reverse_all(*v);
+      // Twist (the rotation of d1 about t per length) is the same read in
+      // either direction: both t and the arc length change sign.
+    }
+    append_segment(s, seg, origin, out);
+  }
+  return out;
+}
+
 }  // namespace
 
 Snapshot linkage_snapshot(const RodLinkage& linkage, const Eigen::Vector3d& origin, double time) {
   Snapshot snap;
   snap.time = time;
-  const auto& rods = linkage.topology().rods;
-  for (size_t r = 0; r < rods.size(); ++r) {
-    // The rod's section: that of its first segment (sections are set per
-    // full rod by the configuration's "rods").
-    const Material& material = rods[r].segments.empty()
-                                   ? linkage.options().material
-                                   : linkage.segment_material(rods[r].segments[0]);
-    SectionSnapshot section;
-    section.shape = material.section.shape == SectionShape::Rectangle
-                        ? SectionSnapshot::Shape::Rectangle
-                        : SectionSnapshot::Shape::Ellipse;
-    section.width = material.section.width;
-    section.height = material.section.height;
-    RodSnapshot out;
-    out.rod_id = static_cast<int>(r);
-    out.section = section;
-    for (size_t k = 0; k < rods[r].segments.size(); ++k) {
-      const int seg = rods[r].segments[k];
-      SegmentSample s = sample(linkage.segment(seg));
-      if (!rods[r].forward[k]) {
-        for (auto* v : {&s.nodes, &s.d1, &s.d2}) reverse_all(*v);
-        for (auto* v : {&s.stretching, &s.curvature, &s.twist, &s.bending, &s.twisting})
-          reverse_all(*v);
-        // Twist (the rotation of d1 about t per length) is the same read in
-        // either direction: both t and the arc length change sign.
-      }
-      // Consecutive segments share the terminal edge at their joint: skip
-      // it (and its two nodes) in the later one, but keep that segment's
-      // vertex quantities at the node past the joint.
-      const size_t skip = out.nodes.empty() ? 0 : 2;
-      if (skip) {
-        out.curvature.back() = s.curvature[1];
-        out.twist.back() = s.twist[1];
-        out.bending_density.back() = s.bending[1];
-        out.twisting_density.back() = s.twisting[1];
-      }
-      for (size_t i = skip; i < s.nodes.size(); ++i) {
-        out.nodes.push_back(s.nodes[i] + origin);
-        out.curvature.push_back(s.curvature[i]);
-        out.twist.push_back(s.twist[i]);
-        out.bending_density.push_back(s.bending[i]);
-        out.twisting_density.push_back(s.twisting[i]);
-      }
-      for (size_t j = skip ? 1 : 0; j < s.d1.size(); ++j) {
-        out.edge_segment.push_back(seg);
-        out.d1.push_back(s.d1[j]);
-        out.d2.push_back(s.d2[j]);
-        out.stretching_density.push_back(s.stretching[j]);
-      }
-    }
-    snap.rods.push_back(std::move(out));
-  }
+  const int num_rods = static_cast<int>(linkage.topology().rods.size());
+  for (int r = 0; r < num_rods; ++r) snap.rods.push_back(rod_snapshot(linkage, r, origin));
   const std::vector<int>& valence = linkage.topology().valence;
   for (int j = 0; j < linkage.num_joints(); ++j) {
     JointSnapshot js;
