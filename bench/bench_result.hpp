@@ -65,7 +65,7 @@ struct BenchResult {
 constexpr double kDeploymentStep = 0.02;
 
 // The CSV header, and a result as one line of it (without newline).
-extern const char* kColumns;
+std::string csv_header();
 std::string to_csv(const BenchResult& r);
 // The result of a CSV line; status "failed" when the line does not parse.
 BenchResult from_csv(const std::string& line);

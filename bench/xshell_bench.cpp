@@ -415,7 +415,7 @@ int main(int argc, char** argv) {
   const std::vector<BenchCase> cases = collect_cases(args.cases);
   print_header(cases.size(), args.settings.reps);
   std::ofstream out(args.csv);
-  out << kColumns << "\n";
+  out << csv_header() << "\n";
   std::vector<BenchResult> results;
   for (const BenchCase& c : cases) {
     BenchResult r = run_isolated(c, args.settings);
