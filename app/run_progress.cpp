@@ -3,6 +3,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "io/optional_json.hpp"
+
 namespace xshell {
 
 namespace {
@@ -28,10 +30,6 @@ std::string sample_text(const ProgressSample& s, double elapsed) {
   if (s.energy) text += ", energy " + scientific(*s.energy);
   if (s.gradient) text += ", gradient " + scientific(*s.gradient);
   return text + ", " + fixed(elapsed, 1) + " s";
-}
-
-nlohmann::json optional(const std::optional<double>& x) {
-  return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
 }
 
 }  // namespace
@@ -74,8 +72,8 @@ void RunProgress::sample(const ProgressSample& s, bool own_line) {
                           {"phase", s.phase},
                           {"stage", s.stage},
                           {"iteration", s.iteration},
-                          {"energy", optional(s.energy)},
-                          {"gradient", optional(s.gradient)},
+                          {"energy", optional_json(s.energy)},
+                          {"gradient", optional_json(s.gradient)},
                           {"elapsed", now}};
       if (s.step) j["step"] = *s.step;
       if (s.angle) j["angle"] = *s.angle;

@@ -12,6 +12,7 @@
 #include "input_error.hpp"
 #include "input_file.hpp"
 #include "json_field.hpp"
+#include "optional_json.hpp"
 
 namespace xshell {
 namespace {
@@ -515,22 +516,20 @@ std::string support_conflict(int vertex, const std::string& earlier_key, const S
 }
 
 nlohmann::json to_json(const Config& c) {
-  nlohmann::json j = {
-      {"linkage", c.linkage},
-      {"subdivisions", c.subdivisions},
-      {"rest_shape", name_of(c.rest_shape, kRestShapes)},
-      {"joints", name_of(c.joints, kJointModels)},
-      {"material", material_json(c.material)},
-      {"rods", config_rods_json(c.rods)},
-      {"supports", config_supports_json(c.supports)},
-      {"loads", config_loads_json(c.loads)},
-      {"solver", config_solver_json(c.solver)},
-      {"output", config_output_json(c.output)},
-      {"analysis",
-       {{"modes", c.analysis.modes},
-        {"buckling", c.analysis.buckling},
-        {"max_seconds", c.analysis.max_seconds ? nlohmann::json(*c.analysis.max_seconds)
-                                               : nlohmann::json(nullptr)}}}};
+  nlohmann::json j = {{"linkage", c.linkage},
+                      {"subdivisions", c.subdivisions},
+                      {"rest_shape", name_of(c.rest_shape, kRestShapes)},
+                      {"joints", name_of(c.joints, kJointModels)},
+                      {"material", material_json(c.material)},
+                      {"rods", config_rods_json(c.rods)},
+                      {"supports", config_supports_json(c.supports)},
+                      {"loads", config_loads_json(c.loads)},
+                      {"solver", config_solver_json(c.solver)},
+                      {"output", config_output_json(c.output)},
+                      {"analysis",
+                       {{"modes", c.analysis.modes},
+                        {"buckling", c.analysis.buckling},
+                        {"max_seconds", optional_json(c.analysis.max_seconds)}}}};
   if (!c.transform.is_identity()) j["transform"] = transform_json(c.transform);
   if (!c.rest_lengths.empty()) j["rest_lengths"] = c.rest_lengths;
   if (!c.units.length.empty()) j["units"]["length"] = c.units.length;

@@ -1,5 +1,7 @@
 #include "engineering_json.hpp"
 
+#include "optional_json.hpp"
+
 namespace xshell {
 
 namespace {
@@ -20,12 +22,11 @@ nlohmann::json engineering_json(const EngineeringResults& r, const Eigen::Vector
   using nlohmann::json;
   json reactions = json::array();
   for (const SupportReaction& s : r.reactions)
-    reactions.push_back(
-        {{"vertex", s.vertex},
-         {"position", vec(s.position + origin)},
-         {"force", vec(s.force)},
-         {"moment", s.moment ? vec(*s.moment) : json(nullptr)},
-         {"opening_torque", s.opening_torque ? json(*s.opening_torque) : json(nullptr)}});
+    reactions.push_back({{"vertex", s.vertex},
+                         {"position", vec(s.position + origin)},
+                         {"force", vec(s.force)},
+                         {"moment", s.moment ? vec(*s.moment) : json(nullptr)},
+                         {"opening_torque", optional_json(s.opening_torque)}});
   const LinkageStresses& st = r.stresses;
   json stresses = {{"max_normal_stress", location(st.max_normal_stress, origin)},
                    {"max_torsional_shear", location(st.max_torsional_shear, origin)},
@@ -43,8 +44,7 @@ nlohmann::json engineering_json(const EngineeringResults& r, const Eigen::Vector
   json out = {{"reactions", reactions}, {"stresses", stresses}, {"joint_forces", joints}};
   if (const auto& s = r.stability) {
     out["lowest_eigenvalues"] = s->lowest_eigenvalues;
-    out["buckling_load_factor"] =
-        s->buckling_load_factor ? json(*s->buckling_load_factor) : json(nullptr);
+    out["buckling_load_factor"] = optional_json(s->buckling_load_factor);
     out["stability_analysis"] = {{"eigenvalues", s->eigen_status},
                                  {"buckling", s->buckling_status}};
   }

@@ -2,6 +2,7 @@
 
 #include "atomic_file.hpp"
 #include "config_parts.hpp"
+#include "optional_json.hpp"
 
 namespace xshell {
 
@@ -23,12 +24,6 @@ nlohmann::json applied(const GraphTransform& t) {
   matrix.push_back({0.0, 0.0, 0.0, 1.0});
   out["matrix"] = matrix;
   return out;
-}
-
-// A value, or null when there is none.
-template <class T>
-nlohmann::json optional_json(const std::optional<T>& x) {
-  return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
 }
 
 nlohmann::json history_json(const RunSummary& s) {
