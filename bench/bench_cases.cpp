@@ -20,11 +20,18 @@ namespace fs = std::filesystem;
 const std::vector<std::string> kDesigns = {"manta_ray", "darth_vader", "scary_face", "hourglass",
                                            "large"};
 
-std::vector<int> parse_ints(const std::string& text) {
-  std::vector<int> out;
+// The non-empty items of a comma-separated list.
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
   std::stringstream in(text);
   for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) out.push_back(std::stoi(item));
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+std::vector<int> parse_ints(const std::string& text) {
+  std::vector<int> out;
+  for (const std::string& item : split_list(text)) out.push_back(std::stoi(item));
   return out;
 }
 
@@ -68,10 +75,8 @@ LineGraph wavy_grid(int n) {
 std::vector<fs::path> chosen_graph_files(const CaseSelection& selection) {
   std::vector<std::string> wanted;
   if (selection.graphs == "designs") wanted = kDesigns;
-  if (selection.graphs != "designs" && selection.graphs != "all") {
-    std::stringstream in(selection.graphs);
-    for (std::string item; std::getline(in, item, ',');) wanted.push_back(item);
-  }
+  if (selection.graphs != "designs" && selection.graphs != "all")
+    wanted = split_list(selection.graphs);
   std::vector<std::pair<size_t, fs::path>> chosen;
   for (const auto& entry : fs::directory_iterator(selection.data)) {
     if (entry.path().extension() != ".obj") continue;

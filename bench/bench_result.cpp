@@ -2,6 +2,8 @@
 
 #include <cstdlib>
 #include <sstream>
+#include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
