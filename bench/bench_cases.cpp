@@ -10,6 +10,7 @@
 #include "io/config.hpp"
 #include "io/input_error.hpp"
 #include "io/obj_reader.hpp"
+#include "linkage/bounding_box.hpp"
 
 namespace xshell::bench {
 
@@ -181,12 +182,8 @@ LinkageProblem make_problem(const BenchCase& c) {
   if (c.setup)
     return LinkageProblem(RodLinkage(c.setup->graph, c.setup->options), c.setup->statics);
   LineGraph graph = c.graph;
-  Eigen::Vector3d lo = graph.vertices.at(0), hi = lo;
-  for (const auto& v : graph.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  for (auto& v : graph.vertices) v -= 0.5 * (lo + hi);  // as the configuration reader does
+  const Eigen::Vector3d origin = bounding_box(graph.vertices).centre();
+  for (auto& v : graph.vertices) v -= origin;  // as the configuration reader does
   LinkageOptions options;
   options.subdivisions = c.subdivisions;
   options.rest_shape = RestShape::Straight;

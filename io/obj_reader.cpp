@@ -12,6 +12,7 @@
 
 #include "input_error.hpp"
 #include "input_file.hpp"
+#include "linkage/bounding_box.hpp"
 
 namespace xshell {
 namespace {
@@ -258,15 +259,6 @@ void check_duplicate_edges(const ObjLineGraph& g, const std::string& name) {
   }
 }
 
-double bounding_box_diagonal(const std::vector<Eigen::Vector3d>& x) {
-  Eigen::Vector3d lo = x.front(), hi = x.front();
-  for (const auto& p : x) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return (hi - lo).stableNorm();  // no underflow for a linkage 1e-300 across
-}
-
 void check_edge_lengths(const ObjLineGraph& g, double tolerance, const std::string& name) {
   const auto& x = g.graph.vertices;
   for (std::size_t e = 0; e < g.graph.edges.size(); ++e) {
@@ -345,7 +337,8 @@ void check_graph(const ObjLineGraph& g, const std::string& name) {
     throw InputError(name + ": no rod segments: a linkage needs at least one 'l' line");
   check_self_loops(g, name);
   check_duplicate_edges(g, name);
-  const double size = bounding_box_diagonal(g.graph.vertices);
+  // stableNorm: no underflow for a linkage 1e-300 across.
+  const double size = bounding_box(g.graph.vertices).diagonal().stableNorm();
   if (size < kMinLinkageSize)
     throw InputError(name + ": the linkage measures " + number(size) +
                      " across (its bounding-box diagonal); at least " + number(kMinLinkageSize) +

@@ -1,6 +1,7 @@
 #include "problem_setup.hpp"
 
 #include "input_error.hpp"
+#include "linkage/bounding_box.hpp"
 #include "support_selection.hpp"
 
 namespace xshell {
@@ -148,12 +149,7 @@ ProblemSetup make_problem_setup(const Config& config, const LineGraph& input) {
                      std::to_string(kMaxRodEdges) + " are supported");
   ProblemSetup setup;
   setup.support_vertices = support_vertices;
-  Eigen::Vector3d lo = graph.vertices.at(0), hi = lo;
-  for (const auto& v : graph.vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  setup.origin = 0.5 * (lo + hi);
+  setup.origin = bounding_box(graph.vertices).centre();
   setup.graph = graph;
   for (auto& v : setup.graph.vertices) v -= setup.origin;
 

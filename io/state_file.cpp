@@ -10,6 +10,7 @@
 #include "input_error.hpp"
 #include "input_file.hpp"
 #include "json_field.hpp"
+#include "linkage/bounding_box.hpp"
 
 namespace xshell {
 
@@ -265,15 +266,6 @@ class StateReader {
   double size_;  // the linkage's bounding-box diagonal
 };
 
-double diagonal(const std::vector<Eigen::Vector3d>& x) {
-  Eigen::Vector3d lo = x.front(), hi = x.front();
-  for (const auto& p : x) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return (hi - lo).norm();
-}
-
 SegmentState read_segment(const StateReader& r, const json& s, std::size_t index,
                           const Eigen::Vector3d& shift) {
   const std::string at = "segments[" + std::to_string(index) + "]";
@@ -368,7 +360,7 @@ void restore_state(const std::string& text, const std::string& name, RodLinkage&
                        printable(saved_graph.dump()) + " differs from this run's " +
                        expected_graph.dump() + ")");
     }
-    const double size = diagonal(linkage.graph().vertices);
+    const double size = bounding_box(linkage.graph().vertices).diagonal().norm();
     const StateReader r(name, size);
     // The same graph has the same bounding-box centre: the saved origin is
     // this run's (to round-off).

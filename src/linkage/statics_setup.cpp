@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "bounding_box.hpp"
 #include "model_error.hpp"
 #include "statics_problem.hpp"
 
@@ -30,19 +31,6 @@ Eigen::Vector3d line_load_on(const std::vector<LineLoad>& loads, int rod) {
     if (load.rods.empty() || std::find(load.rods.begin(), load.rods.end(), rod) != load.rods.end())
       w += load.force_per_length;
   return w;
-}
-
-// Axis-aligned bounding box of the input vertices.
-struct Box {
-  Eigen::Vector3d lo, hi;
-};
-Box bounding_box(const std::vector<Eigen::Vector3d>& vertices) {
-  Eigen::Vector3d lo = vertices[0], hi = lo;
-  for (const auto& v : vertices) {
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  return {lo, hi};
 }
 
 // EI_max: the largest bending stiffness of any segment.
@@ -170,13 +158,13 @@ std::vector<int> clamped_free_ends(const LineGraph& graph,
 LinkageProblem::LinkageProblem(RodLinkage linkage, const StaticsSetup& setup)
     : linkage_(std::move(linkage)) {
   fixed_.assign(linkage_.num_dofs(), false);
-  const Box box = bounding_box(linkage_.graph().vertices);
-  length_scale_ = (box.hi - box.lo).norm();
+  const BoundingBox box = bounding_box(linkage_.graph().vertices);
+  length_scale_ = box.diagonal().norm();
   force_scale_ = largest_bending_stiffness(linkage_) / (length_scale_ * length_scale_);
 
   supports_ = setup.supports;
   if (supports_.empty()) {
-    default_support_ = central_joint_vertex(linkage_, 0.5 * (box.lo + box.hi), length_scale_);
+    default_support_ = central_joint_vertex(linkage_, box.centre(), length_scale_);
     supports_.push_back({default_support_, {SupportDof::Position, SupportDof::Orientation}});
   }
   // The default pin holds its joint where the linkage is (it only removes
