@@ -1,5 +1,6 @@
 #include "integrators/deployment/constrained_newton.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -42,6 +43,12 @@ struct ConstrainedRun {
   // Iterations done when the last saddle was left: the iteration limit
   // counts from there (the descent from a saddle is a solve of its own).
   long iterations_at_escape = 0;
+  // The cap on the step's 2-norm: options.max_step, or with
+  // options.grow_step_cap doubled after every capped step taken in full
+  // and back to the length of the last step when the line search had to
+  // shorten it (step_cap_after).
+  double step_cap = 0.0;
+  bool capped = false;  // the last step was scaled down to step_cap
 };
 
 // The Newton step p and its multiplier tau.
@@ -49,6 +56,17 @@ struct ConstrainedStep {
   Eigen::VectorXd p;
   double tau = 0.0;
 };
+
+// The step cap after an accepted step of `taken` (2-norm), the fraction
+// `fraction` of the capped Newton step: doubled when the capped step was
+// taken in full (the quadratic model held that far: a linkage springing
+// back under a removed load, each full step of max_step lowering the
+// energy), else max_step or the length the line search found, whichever
+// is longer.
+double step_cap_after(const ConstrainedRun& run, double max_step, double taken, double fraction) {
+  if (fraction >= 1.0) return run.capped ? 2.0 * run.step_cap : run.step_cap;
+  return std::max(max_step, taken);
+}
 
 }  // namespace
 
@@ -127,6 +145,7 @@ ConstrainedNewtonResult ConstrainedNewtonSolver::solve(double target,
   const Clock::time_point start = Clock::now();
   Impl& s = *impl_;
   ConstrainedRun run(target, callbacks, constraint_tolerance, max_saddle_escapes);
+  run.step_cap = s.options.max_step;
   s.start(run);
   run.result.setup_seconds = seconds_since(start);
   do {  // iterations, and again after each escape from a saddle
@@ -194,7 +213,7 @@ bool ConstrainedNewtonSolver::Impl::iterate(ConstrainedRun& run) {
 
 // The Newton step from gradient g0 and constraint residual c: by the Schur
 // complement when H is positive definite, else on the constraint's null
-// space (the header). Its length is capped at max_step. False, with the
+// space (the header). Its length is capped at run.step_cap. False, with the
 // result set, when no finite step could be made.
 bool ConstrainedNewtonSolver::Impl::direction(ConstrainedRun& run,
                                               const Eigen::SparseMatrix<double>& H,
@@ -241,7 +260,8 @@ bool ConstrainedNewtonSolver::Impl::direction(ConstrainedRun& run,
     result.reason = "the Newton step is not finite";
     return false;
   }
-  if (length > options.max_step) step.p *= options.max_step / length;
+  run.capped = length > run.step_cap;
+  if (run.capped) step.p *= run.step_cap / length;
   return true;
 }
 
@@ -283,7 +303,12 @@ bool ConstrainedNewtonSolver::Impl::line_search(ConstrainedRun& run, const Eigen
     objective.set(q0);
     throw;
   }
-  if (accepted.accepted) return true;
+  if (accepted.accepted) {
+    if (options.grow_step_cap)
+      run.step_cap = step_cap_after(run, options.max_step, accepted.step_fraction * step.p.norm(),
+                                    accepted.step_fraction);
+    return true;
+  }
   objective.set(q0);
   evaluator.sync();
   fail_line_search(accepted, evaluator, "constrained Newton step", run.result);

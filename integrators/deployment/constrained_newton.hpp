@@ -21,6 +21,10 @@
 //   p = B pz + c a / (a . a) with pz = -(B^T H B)^-1 B^T g on the
 //   constraint's null space, B^T H B shifted by multiples of diag(B^T M B)
 //   as in shifted_factorization.hpp only when it is itself indefinite.
+//   Step cap: |p| <= NewtonOptions::max_step; with grow_step_cap, the cap
+//   doubles after every capped step that the line search took in full and
+//   returns to the longer of max_step and the accepted step's length after
+//   one it shortened.
 // Convergence: max_i |w_i (g - tau a)_i| <= gradient_tolerance with the
 // least-squares tau = a.g / a.a, and |c| <= constraint_tolerance.
 // `stable`: an unshifted LL^T of B^T H B succeeded at the final state (a

@@ -33,6 +33,7 @@ StageSolve solve_in_stage(LinkageProblem& problem, const char* stage, const Aver
   LinkageObjective objective(problem);
   NewtonOptions newton = options.unloaded_newton;
   newton.escape.enabled = false;
+  newton.grow_step_cap = true;  // a linkage springing back from its removed loads
   std::atomic<bool> stop{false};
   NewtonCallbacks callbacks;
   callbacks.stop = &stop;

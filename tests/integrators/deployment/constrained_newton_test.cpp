@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "finite_differences.hpp"
 #include "integrators/common/linkage_objective.hpp"
@@ -135,6 +136,56 @@ TEST_CASE(
     ++cases;
   }
   CHECK(cases == 2);
+}
+
+TEST_CASE(
+    "Constrained Newton: a solution far beyond max_step is reached in capped steps of doubling "
+    "length") {
+  std::mt19937 rng(11);
+  const int n = 7;
+  const Eigen::MatrixXd R = Eigen::MatrixXd::Random(n, n);
+  const Eigen::MatrixXd K = R * R.transpose() + Eigen::MatrixXd::Identity(n, n);
+  const AverageConstraint c(n, {1, 2, 4, 5}, {-1, 0, 0, 1}, 4, 0.0);
+  Eigen::VectorXd f = random_vector(n, rng);
+  const auto [q, tau] = kkt(K, f, c.coefficients(), 0.3);
+  // The solution is linear in (f, A): scaled, it lies 1000 steps of
+  // max_step away.
+  const double scale = 1000.0 / q.norm(), target = 0.3 * scale;
+  f *= scale;
+  const auto [far, far_tau] = kkt(K, f, c.coefficients(), target);
+  REQUIRE(far.norm() == doctest::Approx(1000.0).epsilon(1e-9));
+  Quadratic objective(K, f);
+  NewtonOptions options;
+  options.max_step = 1.0;
+  options.grow_step_cap = true;
+  ConstrainedNewtonSolver solver(objective, c, options);
+  std::vector<double> steps;  // 2-norm of each step
+  Eigen::VectorXd last = objective.get();
+  NewtonCallbacks callbacks;
+  callbacks.on_iteration = [&](const NewtonReport& report) {
+    if (report.iteration > 0) steps.push_back((objective.get() - last).norm());
+    last = objective.get();
+  };
+  const ConstrainedNewtonResult r = solver.solve(target, callbacks);
+  CAPTURE(r.reason);
+  REQUIRE(r.converged());
+  // A fixed cap would take 1000 steps; doubling it, about log2(1000) = 10.
+  CHECK(r.iterations <= 13);
+  REQUIRE(steps.size() >= 3);
+  // Capped at max_step, taken in full, then at twice that, ...
+  CHECK(steps[0] == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(steps[1] == doctest::Approx(2.0).epsilon(1e-12));
+  CHECK(steps[2] == doctest::Approx(4.0).epsilon(1e-12));
+  CHECK((objective.get() - far).norm() < 1e-9 * far.norm());
+  // Without grow_step_cap, every step is capped at max_step: 1000 steps
+  // needed, more than the solve's iteration limit.
+  options.grow_step_cap = false;
+  objective.set(Eigen::VectorXd::Zero(n));
+  ConstrainedNewtonSolver fixed(objective, c, options);
+  const ConstrainedNewtonResult capped = fixed.solve(target);
+  CHECK(!capped.converged());
+  CHECK(capped.iterations == options.max_iterations);
+  CHECK((objective.get() - far).norm() > 0.5 * far.norm());
 }
 
 TEST_CASE("Constrained Newton leaves a symmetric saddle along negative curvature, or reports it") {
