@@ -52,23 +52,26 @@ void RunOutputs::step(double time, bool force) {
     // segment, on a loaded machine).
     LastWritten written{problem_.linkage(), problem_.energy(), problem_.vertex_positions(),
                         problem_.opening_angles()};
-    {
-      const std::lock_guard<std::mutex> lock(last_written_mutex_);
-      last_written_.emplace(std::move(written));
-    }
-    write_in_background(std::move(snapshot));
+    write_in_background(std::move(written), std::move(snapshot));
   } catch (const std::exception& e) {
     error_ = step_error(e.what());
   }
 }
 
-void RunOutputs::write_in_background(Snapshot snapshot) {
-  std::shared_future<void> job =
-      std::async(std::launch::async, [this, snapshot = std::move(snapshot)] {
-        series_->write_now(snapshot);
-      }).share();
+// Under in_flight_mutex_, so that save_last_written() sees either the step
+// recorded and its write in flight (and waits for it) or neither: once it
+// has begun (closed_), a step is dropped, and no file is being written when
+// the program ends.
+void RunOutputs::write_in_background(LastWritten written, Snapshot snapshot) {
   const std::lock_guard<std::mutex> lock(in_flight_mutex_);
-  in_flight_ = std::move(job);
+  if (closed_) return;
+  {
+    const std::lock_guard<std::mutex> last(last_written_mutex_);
+    last_written_.emplace(std::move(written));
+  }
+  in_flight_ = std::async(std::launch::async, [this, snapshot = std::move(snapshot)] {
+                 series_->write_now(snapshot);
+               }).share();
 }
 
 // Waits for the step in flight; its error becomes error(), and a thinning
@@ -123,6 +126,7 @@ bool RunOutputs::save_last_written(RunSummary started, const std::string& reason
   std::shared_future<void> job;
   {
     const std::lock_guard<std::mutex> lock(in_flight_mutex_);
+    closed_ = true;  // no step is started from now on
     job = in_flight_;
   }
   if (job.valid()) job.wait();  // the last written step's files are complete

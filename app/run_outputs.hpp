@@ -62,7 +62,6 @@ class RunOutputs {
  private:
   void finish_in_flight();
   std::string step_error(const std::string& what) const;
-  void write_in_background(Snapshot snapshot);
 
   std::filesystem::path dir_;
   const LinkageProblem& problem_;
@@ -80,6 +79,7 @@ class RunOutputs {
   };
   std::mutex last_written_mutex_;
   std::optional<LastWritten> last_written_;
+  void write_in_background(LastWritten written, Snapshot snapshot);
   int warned_thinnings_ = 0;
   double seconds_ = 0.0;
   std::string error_;
@@ -87,6 +87,7 @@ class RunOutputs {
   // another thread); in_flight_mutex_ guards the handle, not the write.
   std::mutex in_flight_mutex_;
   std::shared_future<void> in_flight_;
+  bool closed_ = false;  // save_last_written() has begun: no more steps (in_flight_mutex_)
 };
 
 }  // namespace xshell

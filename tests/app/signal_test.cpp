@@ -208,7 +208,11 @@ TEST_CASE("interrupt: past the grace period the last written step's state is sav
   CHECK(contains(s["reason"], "interrupted by a signal"));
   CHECK(std::isfinite(s["energy"]["total"].get<double>()));
   CHECK(check_outputs_complete(dir / "out") >= 6);
-  CHECK(temporary_files(dir / "out").empty());
+  // A step that the solver began while the state was being saved is not
+  // written (a temporary file left by the write in flight at the exit).
+  std::string leftovers;
+  for (const std::string& name : temporary_files(dir / "out")) leftovers += name + " ";
+  CHECK_MESSAGE(leftovers.empty(), "temporary files left: " << leftovers);
   write_text(dir / "again.json", config_with(grid_obj(), R"(, "solver": {"max_iterations": 1})"));
   const CommandResult again =
       run_xshell("relax again.json --init out/state.json --out again --quiet", dir.path());
