@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "linkage/bounding_box.hpp"
+
 namespace xshell {
 
 namespace {
@@ -75,13 +77,9 @@ Eigen::Vector3d raised(const Eigen::Vector3d& back, Eigen::Vector3d normal, doub
 
 void place_camera(vtkCamera& camera, const std::vector<vtkPolyData*>& shown, RenderView view,
                   double aspect) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
-  Eigen::Vector3d hi = Eigen::Vector3d::Constant(std::numeric_limits<double>::lowest());
-  for_each_point(shown, [&](const Eigen::Vector3d& x) {
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
-  });
-  const Eigen::Vector3d centre = 0.5 * (lo + hi);
+  BoundingBox box;
+  for_each_point(shown, [&](const Eigen::Vector3d& x) { box.extend(x); });
+  const Eigen::Vector3d centre = box.centre();
   Direction d = preset(view);
   d.back = raised(d.back, flat_normal(shown), view == RenderView::Iso ? 30.0 : 20.0);
   if (std::abs(d.back.dot(d.up)) > 0.99) d.up = Eigen::Vector3d::UnitY();

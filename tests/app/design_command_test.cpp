@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "command_runner.hpp"
+#include "linkage/bounding_box.hpp"
 
 namespace xshell::test {
 
@@ -63,13 +64,10 @@ std::string dome_config(int n, const std::string& extra) {
 }
 
 double bounding_diagonal(const nlohmann::json& vertices) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
-  for (const auto& v : vertices) {
-    const Eigen::Vector3d x(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
-  }
-  return (hi - lo).norm();
+  BoundingBox box;
+  for (const auto& v : vertices)
+    box.extend(Eigen::Vector3d(v[0].get<double>(), v[1].get<double>(), v[2].get<double>()));
+  return box.diagonal().norm();
 }
 
 }  // namespace

@@ -29,4 +29,14 @@ TEST_CASE("Bounding box: a single point, and no points") {
   CHECK_THROWS_AS(bounding_box({}), std::out_of_range);
 }
 
+TEST_CASE("Bounding box: grown point by point from the empty box") {
+  BoundingBox box;
+  CHECK(box.centre() == Eigen::Vector3d::Zero());  // empty: the origin
+  const std::vector<Eigen::Vector3d> points = {{1.0, -2.0, 0.5}, {-3.0, 4.0, 0.5}};
+  for (const Eigen::Vector3d& p : points) box.extend(p);
+  CHECK(box.lo == bounding_box(points).lo);
+  CHECK(box.hi == bounding_box(points).hi);
+  CHECK(box.centre() == Eigen::Vector3d(-1.0, 1.0, 0.5));
+}
+
 }  // namespace xshell::test
