@@ -12,6 +12,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "scratch_directory.hpp"
+
 namespace xshell::test {
 
 // Prints why the current case is skipped and, under CTest, ends the process
@@ -19,7 +21,10 @@ namespace xshell::test {
 inline void report_skip(const std::string& reason) {
   std::printf("SKIPPED: %s\n", reason.c_str());
   std::fflush(stdout);
-  if (const char* code = std::getenv("XSHELL_TEST_SKIP_CODE")) std::exit(std::atoi(code));
+  if (const char* code = std::getenv("XSHELL_TEST_SKIP_CODE")) {
+    ScratchDirectory::remove_all();
+    std::exit(std::atoi(code));
+  }
 }
 
 }  // namespace xshell::test

@@ -17,7 +17,7 @@ namespace xshell::test {
 // nesting, coordinates, and messages that stay one short line
 
 TEST_CASE("bad input: a FIFO or a device as configuration or linkage or state is refused at once") {
-  Scratch dir("not-regular");
+  ScratchDirectory dir("not-regular");
   REQUIRE(::mkfifo((dir / "fifo.json").c_str(), 0600) == 0);
   REQUIRE(::mkfifo((dir / "fifo.obj").c_str(), 0600) == 0);
   write_text(dir / "fifo_linkage.json", config_with("fifo.obj"));
@@ -45,7 +45,7 @@ TEST_CASE("bad input: a FIFO or a device as configuration or linkage or state is
 }
 
 TEST_CASE("bad input: a // comment in the configuration gives its true position") {
-  Scratch dir("config-comment");
+  ScratchDirectory dir("config-comment");
   check_rejected(relax_config(dir, "// settings\n" + grid_config()), dir.path(),
                  {"run.json:1:1: invalid JSON", "JSON has no comments"});
   check_rejected(relax_config(dir, grid_config_replacing("\"subdivisions\": 4,",
@@ -54,7 +54,7 @@ TEST_CASE("bad input: a // comment in the configuration gives its true position"
 }
 
 TEST_CASE("bad input: a configuration nested too deep is refused at once") {
-  Scratch dir("config-nested");
+  ScratchDirectory dir("config-nested");
   // 1.2 MB nested in a key: before, 83 s and 10.6 GB to be rejected.
   const int depth = 100000;
   std::string text = R"({"linkage": "grid.obj", "material": )";
@@ -69,7 +69,7 @@ TEST_CASE("bad input: a configuration nested too deep is refused at once") {
 }
 
 TEST_CASE("bad input: a NUL byte in the OBJ or in a path is shown escaped") {
-  Scratch dir("nul");
+  ScratchDirectory dir("nul");
   const CommandResult obj =
       relax_obj(dir, std::string("v 0 0 0\nv 1 0\0 0\nv 1 1 0\nl 1 2 3\n", 32));
   check_rejected(obj, dir.path(), {"bad.obj:2: coordinate '0\\0' is not a number"});
@@ -80,7 +80,7 @@ TEST_CASE("bad input: a NUL byte in the OBJ or in a path is shown escaped") {
 }
 
 TEST_CASE("bad input: an OBJ with CR-only line endings is read line by line") {
-  Scratch dir("obj-cr");
+  ScratchDirectory dir("obj-cr");
   std::string text = read_text(grid_obj());
   std::replace(text.begin(), text.end(), '\n', '\r');
   write_text(dir / "grid.obj", text);
@@ -91,7 +91,7 @@ TEST_CASE("bad input: an OBJ with CR-only line endings is read line by line") {
 }
 
 TEST_CASE("bad input: a long path is quoted shortened in one short line") {
-  Scratch dir("long-path");
+  ScratchDirectory dir("long-path");
   const std::string path = std::string(1000000, 'p') + "/grid.obj";  // 1 MB
   const CommandResult r = relax_config(dir, config_with(path));
   check_rejected(r, dir.path(), {"cannot open linkage file '", "...", "/grid.obj'"});
@@ -99,7 +99,7 @@ TEST_CASE("bad input: a long path is quoted shortened in one short line") {
 }
 
 TEST_CASE("bad input: coordinates near 1e300 or 1e-300 are refused with the reason") {
-  Scratch dir("obj-extreme");
+  ScratchDirectory dir("obj-extreme");
   check_rejected(relax_obj(dir, "v -5e299 0 0\nv 1.25e299 0 0\nv 0 1e299 0\nl 1 2 3\n"), dir.path(),
                  {"bad.obj:1: coordinate '-5e299' is outside the supported range"});
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1e-300 0 0\nv 1e-300 1e-300 0\nl 1 2 3\n"), dir.path(),
@@ -110,7 +110,7 @@ TEST_CASE("bad input: coordinates near 1e300 or 1e-300 are refused with the reas
 }
 
 TEST_CASE("bad input: --init with a state xshell would not have written") {
-  Scratch dir("init-invalid");
+  ScratchDirectory dir("init-invalid");
   write_text(dir / "run.json", grid_config());
   REQUIRE(run_xshell("relax run.json --out first", dir.path()).status == 0);
   const nlohmann::json state = read_json(dir / "first" / "state.json");
@@ -152,7 +152,7 @@ TEST_CASE("bad input: --init with a state xshell would not have written") {
 // Outputs that cannot be written: exit status 4
 
 TEST_CASE("bad output: an output directory inside a file") {
-  Scratch dir("out-under-file");
+  ScratchDirectory dir("out-under-file");
   write_text(dir / "a_file", "not a folder");
   const CommandResult r = relax_config(
       dir, grid_config_replacing("\"directory\": \"out\"", "\"directory\": \"a_file/out\""));
@@ -164,7 +164,7 @@ TEST_CASE("bad output: an output directory inside a file") {
 }
 
 TEST_CASE("bad output: an output directory that is a file") {
-  Scratch dir("out-is-file");
+  ScratchDirectory dir("out-is-file");
   write_text(dir / "out", "not a folder");
   const CommandResult r = relax_config(dir, grid_config());
   CAPTURE(r.errors);
@@ -174,7 +174,7 @@ TEST_CASE("bad output: an output directory that is a file") {
 }
 
 TEST_CASE("bad output: a 300-character output folder name gives the system's reason") {
-  Scratch dir("out-long-name");
+  ScratchDirectory dir("out-long-name");
   const std::string name(300, 'o');
   const CommandResult r = relax_config(
       dir, grid_config_replacing("\"directory\": \"out\"", "\"directory\": \"" + name + "\""));
@@ -187,7 +187,7 @@ TEST_CASE("bad output: a 300-character output folder name gives the system's rea
 }
 
 TEST_CASE("bad output: a read-only output directory") {
-  Scratch dir("out-read-only");
+  ScratchDirectory dir("out-read-only");
   // The linkage beside the configuration: the unprivileged run may not be
   // able to read the clone's samples (a clone in a folder only its owner
   // can enter).
@@ -208,7 +208,7 @@ TEST_CASE("bad output: a read-only output directory") {
 }
 
 TEST_CASE("bad output: a final output blocked after the solve (summary.json is a folder)") {
-  Scratch dir("out-blocked");
+  ScratchDirectory dir("out-blocked");
   fs::create_directories(dir / "out" / "summary.json");
   const CommandResult r = relax_config(dir, grid_config());
   CAPTURE(r.errors);

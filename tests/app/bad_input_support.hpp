@@ -25,14 +25,14 @@ inline void check_rejected(const CommandResult& r, const fs::path& dir,
 }
 
 // Relaxes the OBJ `text` (as bad.obj) with the sample's material.
-inline CommandResult relax_obj(const Scratch& dir, const std::string& text) {
+inline CommandResult relax_obj(const ScratchDirectory& dir, const std::string& text) {
   write_text(dir / "bad.obj", text);
   write_text(dir / "run.json", config_with("bad.obj"));
   return run_xshell("relax run.json", dir.path());
 }
 
 // Relaxes the configuration `text` (as run.json).
-inline CommandResult relax_config(const Scratch& dir, const std::string& text,
+inline CommandResult relax_config(const ScratchDirectory& dir, const std::string& text,
                                   const std::string& options = "") {
   write_text(dir / "run.json", text);
   return run_xshell("relax run.json " + options, dir.path());

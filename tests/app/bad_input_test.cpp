@@ -17,19 +17,19 @@ namespace xshell::test {
 // The linkage file: every rejection of the OBJ reader, and of the model
 
 TEST_CASE("bad input: OBJ unknown statement") {
-  Scratch dir("obj-statement");
+  ScratchDirectory dir("obj-statement");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1 2\np 1\n"), dir.path(),
                  {"bad.obj:4: ", "unknown statement 'p'"});
 }
 
 TEST_CASE("bad input: OBJ faces") {
-  Scratch dir("obj-face");
+  ScratchDirectory dir("obj-face");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), dir.path(),
                  {"bad.obj:4: ", "faces ('f')"});
 }
 
 TEST_CASE("bad input: OBJ coordinate that is not a number") {
-  Scratch dir("obj-nan-text");
+  ScratchDirectory dir("obj-nan-text");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 x 0\nl 1 2\n"), dir.path(),
                  {"bad.obj:2: ", "'x'", "not a number"});
 }
@@ -39,7 +39,7 @@ TEST_CASE("bad input: OBJ NaN and infinite coordinates") {
   for (const std::string value :
        {"nan", "NaN", "-nan", "inf", "-inf", "Infinity", "1e999", "-1e400"}) {
     CAPTURE(value);
-    Scratch dir("obj-nonfinite");
+    ScratchDirectory dir("obj-nonfinite");
     const CommandResult r = relax_obj(dir, "v 0 0 0\nv 1 0 0\nv 1 " + value + " 0\nl 1 2\nl 2 3\n");
     check_rejected(r, dir.path(), {"bad.obj:3: ", "'" + value + "'"});
     CHECK((contains(r.errors, "not a finite number") || contains(r.errors, "out of the range")));
@@ -49,7 +49,7 @@ TEST_CASE("bad input: OBJ NaN and infinite coordinates") {
 }
 
 TEST_CASE("bad input: OBJ vertex with too few or too many coordinates") {
-  Scratch dir("obj-coordinates");
+  ScratchDirectory dir("obj-coordinates");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0\nl 1 2\n"), dir.path(),
                  {"bad.obj:2: ", "needs three"});
   check_rejected(relax_obj(dir, "v 0 0 0 1 2\nv 1 0 0\nl 1 2\n"), dir.path(),
@@ -57,13 +57,13 @@ TEST_CASE("bad input: OBJ vertex with too few or too many coordinates") {
 }
 
 TEST_CASE("bad input: OBJ index 0") {
-  Scratch dir("obj-index0");
+  ScratchDirectory dir("obj-index0");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 0 1\n"), dir.path(),
                  {"bad.obj:3: ", "index 0", "start at 1"});
 }
 
 TEST_CASE("bad input: OBJ index out of range") {
-  Scratch dir("obj-index-range");
+  ScratchDirectory dir("obj-index-range");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1 3\n"), dir.path(),
                  {"bad.obj:3: ", "vertex index 3 is out of range", "defines 2 vertices"});
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl -3 1\n"), dir.path(),
@@ -71,49 +71,49 @@ TEST_CASE("bad input: OBJ index out of range") {
 }
 
 TEST_CASE("bad input: OBJ index that is not an integer") {
-  Scratch dir("obj-index-text");
+  ScratchDirectory dir("obj-index-text");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1 2.0\n"), dir.path(),
                  {"bad.obj:3: ", "'2.0'", "not an integer"});
 }
 
 TEST_CASE("bad input: OBJ 'l' with one index") {
-  Scratch dir("obj-short-l");
+  ScratchDirectory dir("obj-short-l");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1\n"), dir.path(),
                  {"bad.obj:3: ", "at least two vertex indices"});
 }
 
 TEST_CASE("bad input: OBJ self-loop") {
-  Scratch dir("obj-self-loop");
+  ScratchDirectory dir("obj-self-loop");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1 2\nl 2 2\n"), dir.path(),
                  {"bad.obj:4: ", "self-loop"});
 }
 
 TEST_CASE("bad input: OBJ duplicate edge") {
-  Scratch dir("obj-duplicate");
+  ScratchDirectory dir("obj-duplicate");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nl 1 2\nl 2 1\n"), dir.path(),
                  {"bad.obj:4: ", "duplicate edge", "line 3"});
 }
 
 TEST_CASE("bad input: OBJ zero-length edge") {
-  Scratch dir("obj-zero-length");
+  ScratchDirectory dir("obj-zero-length");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nv 1 0 0\nl 1 2\nl 2 3\n"), dir.path(),
                  {"bad.obj:5: ", "zero-length edge"});
 }
 
 TEST_CASE("bad input: OBJ coincident vertices") {
-  Scratch dir("obj-coincident");
+  ScratchDirectory dir("obj-coincident");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 1 0 0\nl 1 2\nl 2 3\nl 3 4\n"),
                  dir.path(), {"bad.obj:4: ", "coincides with vertex 1"});
 }
 
 TEST_CASE("bad input: OBJ isolated vertex") {
-  Scratch dir("obj-isolated");
+  ScratchDirectory dir("obj-isolated");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nv 5 5 5\nl 1 2\n"), dir.path(),
                  {"bad.obj:3: ", "isolated"});
 }
 
 TEST_CASE("bad input: OBJ vertex of valence above 4") {
-  Scratch dir("obj-valence");
+  ScratchDirectory dir("obj-valence");
   check_rejected(relax_obj(dir,
                            "v 0 0 0\nv 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
                            "l 1 2\nl 1 3\nl 1 4\nl 1 5\nl 1 6\n"),
@@ -121,20 +121,20 @@ TEST_CASE("bad input: OBJ vertex of valence above 4") {
 }
 
 TEST_CASE("bad input: OBJ disconnected graph") {
-  Scratch dir("obj-disconnected");
+  ScratchDirectory dir("obj-disconnected");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nl 1 2\nl 3 4\n"), dir.path(),
                  {"bad.obj:3: ", "not connected"});
 }
 
 TEST_CASE("bad input: OBJ without edges (an empty file)") {
-  Scratch dir("obj-empty");
+  ScratchDirectory dir("obj-empty");
   check_rejected(relax_obj(dir, ""), dir.path(), {"bad.obj: ", "no rod segments"});
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\n"), dir.path(),
                  {"bad.obj: ", "no rod segments"});
 }
 
 TEST_CASE("bad input: OBJ of random bytes") {
-  Scratch dir("obj-bytes");
+  ScratchDirectory dir("obj-bytes");
   std::string bytes;
   for (int i = 0; i < 256; ++i) bytes += static_cast<char>((i * 37 + 11) % 256);
   const CommandResult r = relax_obj(dir, bytes);
@@ -142,26 +142,26 @@ TEST_CASE("bad input: OBJ of random bytes") {
 }
 
 TEST_CASE("bad input: a linkage the model refuses (a joint whose two rods are collinear)") {
-  Scratch dir("obj-collinear");
+  ScratchDirectory dir("obj-collinear");
   check_rejected(relax_obj(dir, "v 0 0 0\nv 1 0 0\nv 2 0 0\nl 1 2\nl 2 3\n"), dir.path(),
                  {"bad.obj: ", "vertex 1", "collinear"});
 }
 
 TEST_CASE("bad input: a missing linkage file") {
-  Scratch dir("obj-missing");
+  ScratchDirectory dir("obj-missing");
   check_rejected(relax_config(dir, config_with("no_such.obj")), dir.path(),
                  {"cannot open linkage file 'no_such.obj'", "No such file"});
 }
 
 TEST_CASE("bad input: a linkage path that is a folder") {
-  Scratch dir("obj-folder");
+  ScratchDirectory dir("obj-folder");
   fs::create_directory(dir / "folder.obj");
   check_rejected(relax_config(dir, config_with("folder.obj")), dir.path(),
                  {"cannot open linkage file 'folder.obj'", "folder"});
 }
 
 TEST_CASE("bad input: an unreadable linkage file (mode 000)") {
-  Scratch dir("obj-unreadable");
+  ScratchDirectory dir("obj-unreadable");
   fs::copy_file(grid_obj(), dir / "locked.obj");
   fs::permissions(dir / "locked.obj", fs::perms::none);
   write_text(dir / "run.json", config_with("locked.obj"));
@@ -174,20 +174,20 @@ TEST_CASE("bad input: an unreadable linkage file (mode 000)") {
 // The configuration
 
 TEST_CASE("bad input: a missing configuration file") {
-  Scratch dir("config-missing");
+  ScratchDirectory dir("config-missing");
   check_rejected(run_xshell("relax no_such.json", dir.path()), dir.path(),
                  {"cannot open configuration file 'no_such.json'", "No such file"});
 }
 
 TEST_CASE("bad input: a configuration path that is a folder") {
-  Scratch dir("config-folder");
+  ScratchDirectory dir("config-folder");
   fs::create_directory(dir / "run.json");
   check_rejected(run_xshell("relax run.json", dir.path()), dir.path(),
                  {"configuration file 'run.json'", "folder"});
 }
 
 TEST_CASE("bad input: an unreadable configuration file (mode 000)") {
-  Scratch dir("config-unreadable");
+  ScratchDirectory dir("config-unreadable");
   write_text(dir / "run.json", grid_config());
   fs::permissions(dir / "run.json", fs::perms::none);
   const CommandResult r = run_xshell_unprivileged("relax run.json", dir.path());
@@ -196,7 +196,7 @@ TEST_CASE("bad input: an unreadable configuration file (mode 000)") {
 }
 
 TEST_CASE("bad input: JSON that does not parse gives the line and the column") {
-  Scratch dir("config-syntax");
+  ScratchDirectory dir("config-syntax");
   // Line 3 ends with a second comma at column 21.
   check_rejected(relax_config(dir, "{\n  \"linkage\": \"a.obj\",\n  \"subdivisions\": 8,,\n}"),
                  dir.path(), {"run.json:3:21: invalid JSON"});
@@ -210,7 +210,7 @@ TEST_CASE("bad input: NaN and Infinity literals are not JSON") {
   int checked = 0;
   for (const std::string literal : {"NaN", "nan", "Infinity", "-Infinity", "inf"}) {
     CAPTURE(literal);
-    Scratch dir("config-nan");
+    ScratchDirectory dir("config-nan");
     const CommandResult r =
         relax_config(dir, grid_config(R"(, "loads": {"gravity": [0, 0, )" + literal + "]}"));
     check_rejected(r, dir.path(), {"run.json:", "invalid JSON", "JSON has no NaN or Infinity"});
@@ -233,7 +233,7 @@ TEST_CASE("bad input: numbers that overflow to infinity, anywhere") {
   int checked = 0;
   for (const Case& c : cases) {
     CAPTURE(c.path);
-    Scratch dir("config-overflow");
+    ScratchDirectory dir("config-overflow");
     check_rejected(relax_config(dir, grid_config_replacing(c.from, c.to)), dir.path(),
                    {"run.json: " + c.path + ": number", "overflows to infinity"});
     ++checked;
@@ -249,7 +249,7 @@ TEST_CASE("bad input: numbers that overflow to infinity, anywhere") {
   };
   for (const auto& [extra, path] : more) {
     CAPTURE(path);
-    Scratch dir("config-overflow");
+    ScratchDirectory dir("config-overflow");
     check_rejected(relax_config(dir, grid_config(extra)), dir.path(),
                    {"run.json: " + path + ": number", "overflows"});
     ++checked;
@@ -258,7 +258,7 @@ TEST_CASE("bad input: numbers that overflow to infinity, anywhere") {
 }
 
 TEST_CASE("bad input: an unknown key, with the closest valid key suggested") {
-  Scratch dir("config-unknown");
+  ScratchDirectory dir("config-unknown");
   check_rejected(
       relax_config(dir, grid_config_replacing("\"subdivisions\"", "\"subdivision\"")), dir.path(),
       {"unknown key \"subdivision\" at the top level", "did you mean \"subdivisions\"?"});
@@ -274,13 +274,13 @@ TEST_CASE("bad input: an unknown key, with the closest valid key suggested") {
 }
 
 TEST_CASE("bad input: a key given twice") {
-  Scratch dir("config-twice");
+  ScratchDirectory dir("config-twice");
   check_rejected(relax_config(dir, grid_config(R"(, "subdivisions": 5)")), dir.path(),
                  {"run.json: subdivisions: key given twice"});
 }
 
 TEST_CASE("bad input: wrong types") {
-  Scratch dir("config-types");
+  ScratchDirectory dir("config-types");
   check_rejected(
       relax_config(dir, grid_config_replacing("2.0e10", "\"2.0e10\"")), dir.path(),
       {"run.json: material.young_modulus: expected a number, got a string (\"2.0e10\")"});
@@ -302,7 +302,7 @@ TEST_CASE("bad input: wrong types") {
 }
 
 TEST_CASE("bad input: a missing required key") {
-  Scratch dir("config-missing-key");
+  ScratchDirectory dir("config-missing-key");
   check_rejected(relax_config(dir, grid_config_replacing("\"young_modulus\": 2.0e10, ", "")),
                  dir.path(), {"run.json: missing required key \"material.young_modulus\""});
   check_rejected(relax_config(dir, "{}"), dir.path(),
@@ -310,7 +310,7 @@ TEST_CASE("bad input: a missing required key") {
 }
 
 TEST_CASE("bad input: a negative or zero Young's modulus") {
-  Scratch dir("config-modulus");
+  ScratchDirectory dir("config-modulus");
   check_rejected(relax_config(dir, grid_config_replacing("2.0e10", "-2.0e10")), dir.path(),
                  {"run.json: material.young_modulus: must be > 0"});
   check_rejected(relax_config(dir, grid_config_replacing("2.0e10", "0")), dir.path(),
@@ -318,7 +318,7 @@ TEST_CASE("bad input: a negative or zero Young's modulus") {
 }
 
 TEST_CASE("bad input: negative or zero cross-section dimensions") {
-  Scratch dir("config-section");
+  ScratchDirectory dir("config-section");
   check_rejected(relax_config(dir, grid_config_replacing("\"width\": 0.01", "\"width\": -0.01")),
                  dir.path(), {"run.json: material.cross_section.width: must be > 0"});
   check_rejected(relax_config(dir, grid_config_replacing("\"height\": 0.007", "\"height\": 0")),
@@ -326,7 +326,7 @@ TEST_CASE("bad input: negative or zero cross-section dimensions") {
 }
 
 TEST_CASE("bad input: a negative density") {
-  Scratch dir("config-density");
+  ScratchDirectory dir("config-density");
   check_rejected(relax_config(dir, grid_config_replacing("\"density\": 1800", "\"density\": -1")),
                  dir.path(), {"run.json: material.density: must be >= 0"});
 }
@@ -335,7 +335,7 @@ TEST_CASE("bad input: a Poisson ratio outside (-1, 0.5), inside it runs") {
   int checked = 0;
   for (const std::string nu : {"0.5", "-1", "0.7", "-1.5", "2"}) {
     CAPTURE(nu);
-    Scratch dir("config-poisson");
+    ScratchDirectory dir("config-poisson");
     check_rejected(
         relax_config(dir, grid_config_replacing("\"density\": 1800",
                                                 "\"density\": 1800, \"poisson_ratio\": " + nu)),
@@ -345,7 +345,7 @@ TEST_CASE("bad input: a Poisson ratio outside (-1, 0.5), inside it runs") {
   CHECK(checked == 5);
   for (const std::string nu : {"0.49", "-0.99"}) {
     CAPTURE(nu);
-    Scratch dir("config-poisson-ok");
+    ScratchDirectory dir("config-poisson-ok");
     const CommandResult r = relax_config(
         dir,
         grid_config_replacing("\"density\": 1800", "\"density\": 1800, \"poisson_ratio\": " + nu));
@@ -358,14 +358,14 @@ TEST_CASE("bad input: subdivisions below the model's minimum (3), 3 runs") {
   int checked = 0;
   for (const std::string n : {"2", "1", "0", "-3"}) {
     CAPTURE(n);
-    Scratch dir("config-subdivisions");
+    ScratchDirectory dir("config-subdivisions");
     check_rejected(
         relax_config(dir, grid_config_replacing("\"subdivisions\": 4", "\"subdivisions\": " + n)),
         dir.path(), {"run.json: subdivisions: must be >= 3, got " + n});
     ++checked;
   }
   CHECK(checked == 4);
-  Scratch dir("config-subdivisions-ok");
+  ScratchDirectory dir("config-subdivisions-ok");
   const CommandResult r =
       relax_config(dir, grid_config_replacing("\"subdivisions\": 4", "\"subdivisions\": 3"));
   CAPTURE(r.errors);
@@ -373,14 +373,14 @@ TEST_CASE("bad input: subdivisions below the model's minimum (3), 3 runs") {
 }
 
 TEST_CASE("bad input: subdivisions too many for any machine") {
-  Scratch dir("config-subdivisions-huge");
+  ScratchDirectory dir("config-subdivisions-huge");
   check_rejected(relax_config(dir, grid_config_replacing("\"subdivisions\": 4",
                                                          "\"subdivisions\": 2000000000")),
                  dir.path(), {"run.json: subdivisions: 2000000000 x 40 segments", "at most"});
 }
 
 TEST_CASE("bad input: a support naming a vertex that does not exist") {
-  Scratch dir("config-support-vertex");
+  ScratchDirectory dir("config-support-vertex");
   check_rejected(
       relax_config(dir, grid_config(R"(, "supports": [{"vertex": 32, "fix": ["position"]}])")),
       dir.path(),
@@ -391,7 +391,7 @@ TEST_CASE("bad input: a support naming a vertex that does not exist") {
 }
 
 TEST_CASE("bad input: a force naming a vertex that does not exist") {
-  Scratch dir("config-force-vertex");
+  ScratchDirectory dir("config-force-vertex");
   check_rejected(
       relax_config(
           dir,
@@ -401,7 +401,7 @@ TEST_CASE("bad input: a force naming a vertex that does not exist") {
 }
 
 TEST_CASE("bad input: a deployment naming a vertex that does not exist") {
-  Scratch dir("config-deployment-vertex");
+  ScratchDirectory dir("config-deployment-vertex");
   check_rejected(
       relax_config(
           dir, grid_config(R"(, "deployment": {"joint_angles": [{"vertex": 40, "angle": 1.0}]})")),
@@ -409,7 +409,7 @@ TEST_CASE("bad input: a deployment naming a vertex that does not exist") {
 }
 
 TEST_CASE("bad input: a deployment that drives a free rod end") {
-  Scratch dir("config-deployment-free-end");
+  ScratchDirectory dir("config-deployment-free-end");
   check_rejected(
       relax_config(
           dir, grid_config(R"(, "deployment": {"joint_angles": [{"vertex": 0, "angle": 1.0}]})")),
@@ -417,14 +417,14 @@ TEST_CASE("bad input: a deployment that drives a free rod end") {
 }
 
 TEST_CASE("bad input: a deployment with edge-vector joints") {
-  Scratch dir("config-deployment-edge-vectors");
+  ScratchDirectory dir("config-deployment-edge-vectors");
   check_rejected(relax_config(dir, grid_config(R"(, "joints": "edge_vectors",
   "deployment": {"average_opening_angle": 1.2})")),
                  dir.path(), {"run.json: deployment: needs \"joints\": \"rotation\""});
 }
 
 TEST_CASE("bad input: a support that does not apply to its vertex names its key") {
-  Scratch dir("config-support-kind");
+  ScratchDirectory dir("config-support-kind");
   // Vertex 0 of the grid is a free rod end: it has no opening angle. The
   // mistake is in the configuration, not in the OBJ.
   check_rejected(
@@ -449,7 +449,7 @@ TEST_CASE("bad input: a support that does not apply to its vertex names its key"
 }
 
 TEST_CASE("bad input: one vertex in two supports with conflicting displacements names both") {
-  Scratch dir("config-support-twice");
+  ScratchDirectory dir("config-support-twice");
   check_rejected(relax_config(dir, grid_config(R"(, "supports": [
     {"vertex": 1, "fix": ["position"], "displacement": [0, 0, 0.01]},
     {"vertex": 4, "fix": ["position"]},
@@ -459,7 +459,7 @@ TEST_CASE("bad input: one vertex in two supports with conflicting displacements 
 }
 
 TEST_CASE("bad input: command-line usage in one line naming what is wrong") {
-  Scratch dir("usage");
+  ScratchDirectory dir("usage");
   write_text(dir / "run.json", grid_config());
   check_rejected(
       run_xshell("solve run.json", dir.path()), dir.path(),
@@ -484,7 +484,7 @@ TEST_CASE("bad input: command-line usage in one line naming what is wrong") {
 // --init: a state file
 
 TEST_CASE("bad input: --init with a state of another linkage") {
-  Scratch dir("init-foreign");
+  ScratchDirectory dir("init-foreign");
   write_text(dir / "grid.json", grid_config());
   REQUIRE(run_xshell("relax grid.json --out first", dir.path()).status == 0);
   // The same graph with other subdivisions is another linkage too.
@@ -500,7 +500,7 @@ TEST_CASE("bad input: --init with a state of another linkage") {
 }
 
 TEST_CASE("bad input: --init with a missing, truncated or foreign file") {
-  Scratch dir("init-bad-file");
+  ScratchDirectory dir("init-bad-file");
   write_text(dir / "run.json", grid_config());
   check_rejected(run_xshell("relax run.json --init nothing.json", dir.path()), dir.path(),
                  {"nothing.json: cannot read the state file: No such file"});

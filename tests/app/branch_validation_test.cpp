@@ -115,7 +115,8 @@ TEST_CASE("manta ray deployed to 93 degrees leaves the flat state up (or down wh
   if (!fs::exists(kData / "manta_ray_5ca2f7ab.obj"))
     XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
   const nlohmann::json deployment = {{"average_opening_angle", 93.0 * M_PI / 180.0}, {"steps", 20}};
-  const fs::path dir = temporary_directory("manta_branch");
+  const ScratchDirectory scratch("manta_branch");
+  const fs::path& dir = scratch.path();
   const Deployed up =
       deploy(dir, design_config("manta_ray_5ca2f7ab.obj", deployment, nlohmann::json::object()));
   check_every_step_stable(up, 20);
@@ -138,7 +139,8 @@ TEST_CASE("manta ray deployed by damped dynamics reaches Newton's branch" *
   if (!fs::exists(kData / "manta_ray_5ca2f7ab.obj"))
     XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
   const nlohmann::json deployment = {{"average_opening_angle", 93.0 * M_PI / 180.0}, {"steps", 20}};
-  const fs::path dir = temporary_directory("manta_dynamics");
+  const ScratchDirectory scratch("manta_dynamics");
+  const fs::path& dir = scratch.path();
   const Deployed newton =
       deploy(dir, design_config("manta_ray_5ca2f7ab.obj", deployment, nlohmann::json::object()));
   const Deployed dynamics =
@@ -161,7 +163,8 @@ TEST_CASE("darth vader opened at two joints to 2 rad leaves the flat state up an
   const nlohmann::json deployment = {
       {"joint_angles", {{{"vertex", 19}, {"angle", 2.0}}, {{"vertex", 60}, {"angle", 2.0}}}},
       {"steps", 20}};
-  const fs::path dir = temporary_directory("darth_branch");
+  const ScratchDirectory scratch("darth_branch");
+  const fs::path& dir = scratch.path();
   const Deployed up = deploy(
       dir, design_config("darth_vader_fig5_1693d9a2.obj", deployment, nlohmann::json::object()));
   check_every_step_stable(up, 20);
@@ -176,7 +179,8 @@ TEST_CASE("manta ray under gravity deployed to 93 degrees takes the branch the u
   if (!fs::exists(kData / "manta_ray_5ca2f7ab.obj"))
     XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
   const nlohmann::json deployment = {{"average_opening_angle", 93.0 * M_PI / 180.0}, {"steps", 20}};
-  const fs::path dir = temporary_directory("manta_gravity");
+  const ScratchDirectory scratch("manta_gravity");
+  const fs::path& dir = scratch.path();
   const Deployed up = deploy(dir, with_gravity(design_config("manta_ray_5ca2f7ab.obj", deployment,
                                                              nlohmann::json::object())));
   check_every_step_stable(up, 20);
@@ -201,7 +205,8 @@ TEST_CASE("manta ray under gravity deployed by damped dynamics reaches Newton's 
   if (!fs::exists(kData / "manta_ray_5ca2f7ab.obj"))
     XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
   const nlohmann::json deployment = {{"average_opening_angle", 93.0 * M_PI / 180.0}, {"steps", 20}};
-  const fs::path dir = temporary_directory("manta_gravity_dynamics");
+  const ScratchDirectory scratch("manta_gravity_dynamics");
+  const fs::path& dir = scratch.path();
   const Deployed newton = deploy(
       dir,
       with_gravity(design_config("manta_ray_5ca2f7ab.obj", deployment, nlohmann::json::object())));
@@ -224,7 +229,8 @@ TEST_CASE("darth vader deployed to 115 degrees with and without gravity leaves t
     XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
   const nlohmann::json deployment = {{"average_opening_angle", 115.0 * M_PI / 180.0},
                                      {"steps", 20}};
-  const fs::path dir = temporary_directory("darth_average");
+  const ScratchDirectory scratch("darth_average");
+  const fs::path& dir = scratch.path();
   const nlohmann::json plain =
       design_config("darth_vader_fig5_1693d9a2.obj", deployment, nlohmann::json::object());
   const Deployed free = deploy(dir, plain);
@@ -247,7 +253,8 @@ namespace {
 
 void relax_and_deploy_largest(int subdivisions) {
   if (!fs::exists(kData / "large_6d35a972.obj")) XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
-  const fs::path dir = temporary_directory("largest_saddle");
+  const ScratchDirectory scratch("largest_saddle");
+  const fs::path& dir = scratch.path();
   nlohmann::json config = design_config("large_6d35a972.obj", nullptr, nlohmann::json::object());
   config.erase("deployment");
   config["subdivisions"] = subdivisions;

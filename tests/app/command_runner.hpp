@@ -8,9 +8,10 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <random>
 #include <sstream>
 #include <string>
+
+#include "scratch_directory.hpp"
 
 namespace xshell::test {
 
@@ -20,16 +21,6 @@ struct CommandResult {
   int status = -1;     // exit status
   std::string errors;  // stderr
 };
-
-// A fresh, empty temporary directory.
-inline fs::path temporary_directory(const std::string& name) {
-  std::random_device rd;
-  const fs::path dir =
-      fs::temp_directory_path() / ("xshell-test-" + name + "-" + std::to_string(rd()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 inline std::string read_text(const fs::path& path) {
   std::ifstream in(path);

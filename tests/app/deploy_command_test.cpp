@@ -87,7 +87,8 @@ TEST_CASE(
   int solvers = 0;
   for (const char* solver : {"newton", "dynamics"}) {
     CAPTURE(solver);
-    const fs::path dir = temporary_directory("deploy");
+    const ScratchDirectory scratch("deploy");
+    const fs::path& dir = scratch.path();
     write_text(dir / "dome.obj", dome_obj());
     write_text(dir / "run.json",
                deploy_config(R"({"average_opening_angle": 1.9, "steps": 4})", solver));
@@ -161,7 +162,8 @@ TEST_CASE(
 
 TEST_CASE("the deployment plot runs without a shell: quotes and $(...) in the output folder") {
   if (!matplotlib_available()) XSHELL_SKIP("no python3 with matplotlib: no deployment plot");
-  const fs::path dir = temporary_directory("deploy-plot-name");
+  const ScratchDirectory scratch("deploy-plot-name");
+  const fs::path& dir = scratch.path();
   write_text(dir / "dome.obj", dome_obj());
   write_text(dir / "run.json",
              deploy_config(R"({"average_opening_angle": 1.7, "steps": 1})", "newton"));
@@ -185,7 +187,8 @@ TEST_CASE("the deployment plot labels energy and torque with the configured unit
   CHECK(plot_labels({"mm", "N"}).energy == "energy [N mm]");
   CHECK(plot_labels({"mm", "N"}).torque == "torque dE/dA [N mm/rad]");
   if (!matplotlib_available()) XSHELL_SKIP("no python3 with matplotlib: no deployment plot");
-  const fs::path dir = temporary_directory("deploy-plot-units");
+  const ScratchDirectory scratch("deploy-plot-units");
+  const fs::path& dir = scratch.path();
   write_text(dir / "dome.obj", dome_obj());
   const std::string plain = deploy_config(R"({"average_opening_angle": 1.7, "steps": 1})");
   std::string with_units = plain;
@@ -206,7 +209,8 @@ TEST_CASE("the deployment plot labels energy and torque with the configured unit
 }
 
 TEST_CASE("relax --init continues a deployment, and closing it back returns the start energy") {
-  const fs::path dir = temporary_directory("deploy-init");
+  const ScratchDirectory scratch("deploy-init");
+  const fs::path& dir = scratch.path();
   write_text(dir / "dome.obj", dome_obj());
   write_text(dir / "open.json", deploy_config(R"({"average_opening_angle": 1.8, "steps": 3})"));
   REQUIRE(run_xshell("relax open.json --out opened", dir).status == 0);
@@ -238,7 +242,8 @@ TEST_CASE("relax --init continues a deployment, and closing it back returns the 
 }
 
 TEST_CASE("relax with prescribed joint angles, and the errors of a deployment") {
-  const fs::path dir = temporary_directory("deploy-joints");
+  const ScratchDirectory scratch("deploy-joints");
+  const fs::path& dir = scratch.path();
   write_text(dir / "dome.obj", dome_obj(true));
   write_text(dir / "run.json",
              deploy_config(R"({"joint_angles": [{"vertex": 4, "angle": 1.9}], "steps": 3})"));
@@ -275,7 +280,8 @@ TEST_CASE("relax with prescribed joint angles, and the errors of a deployment") 
 }
 
 TEST_CASE("relax: a deployment with kinetic damping is refused, not ignored") {
-  const fs::path dir = temporary_directory("deploy-kinetic");
+  const ScratchDirectory scratch("deploy-kinetic");
+  const fs::path& dir = scratch.path();
   write_text(dir / "dome.obj", dome_obj(true));
   write_text(dir / "run.json", deploy_config(R"({"average_opening_angle": 1.9, "steps": 2})"));
   const CommandResult r = run_xshell("relax run.json --solver kinetic-damping", dir);
@@ -286,7 +292,8 @@ TEST_CASE("relax: a deployment with kinetic damping is refused, not ignored") {
 }
 
 TEST_CASE("relax: a deployment with edge-vector joints is refused, not run on the wrong unknowns") {
-  const fs::path dir = temporary_directory("deploy-edge-vectors");
+  const ScratchDirectory scratch("deploy-edge-vectors");
+  const fs::path& dir = scratch.path();
   write_text(dir / "dome.obj", dome_obj(true));
   std::string config = deploy_config(R"({"average_opening_angle": 1.9, "steps": 2})");
   config.insert(config.find('{') + 1, R"("joints": "edge_vectors",)");

@@ -82,7 +82,8 @@ TEST_CASE("A child that waits for its input ends when its pipe closes") {
 TEST_CASE("The deployment plot loads before the table exists and draws it once complete") {
   if (!has_matplotlib()) XSHELL_SKIP("no python3 with matplotlib: no deployment plot");
   REQUIRE(fs::is_regular_file(kScript));
-  const fs::path dir = temporary_directory("deployment-plot");
+  const ScratchDirectory scratch("deployment-plot");
+  const fs::path& dir = scratch.path();
   {
     DeploymentPlotter plotter(dir / "table.csv", dir / "plot.png", {"mm", "N"}, kScript);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -122,7 +123,8 @@ TEST_CASE("The deployment plot loads before the table exists and draws it once c
 }
 
 TEST_CASE("Without its script the deployment plot says so") {
-  const fs::path dir = temporary_directory("deployment-plot-script");
+  const ScratchDirectory scratch("deployment-plot-script");
+  const fs::path& dir = scratch.path();
   DeploymentPlotter plotter(dir / "table.csv", dir / "plot.png", {}, dir / "absent.py");
   const PlotOutcome outcome = plotter.finish(true);
   CHECK_FALSE(outcome.written);

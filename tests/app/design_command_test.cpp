@@ -73,7 +73,8 @@ double bounding_diagonal(const nlohmann::json& vertices) {
 }  // namespace
 
 TEST_CASE("design: rest lengths perturbed by up to 5% are recovered from their deployed joints") {
-  const fs::path dir = temporary_directory("design-recovery");
+  const ScratchDirectory scratch("design-recovery");
+  const fs::path& dir = scratch.path();
   write_text(dir / "dome.obj", dome_obj(3, 0.8));
   // The "true" design: every rest length perturbed, deployed by relax.
   std::mt19937 rng(5);
@@ -130,7 +131,8 @@ TEST_CASE("design: rest lengths perturbed by up to 5% are recovered from their d
 }
 
 TEST_CASE("design: a target surface attracts every joint, and the flat state stays flat") {
-  const fs::path dir = temporary_directory("design-surface");
+  const ScratchDirectory scratch("design-surface");
+  const fs::path& dir = scratch.path();
   write_text(dir / "dome.obj", dome_obj(4, 0.8));
   write_text(dir / "surface.obj", paraboloid_obj(21, 0.8, 1.1));
   write_text(dir / "design.json", dome_config(4, R"(, "design": {"average_opening_angle": 1.9,
@@ -156,7 +158,8 @@ TEST_CASE("design: a target surface attracts every joint, and the flat state sta
 }
 
 TEST_CASE("design: a flat linkage's flat state is held in its plane") {
-  const fs::path dir = temporary_directory("design-planar");
+  const ScratchDirectory scratch("design-planar");
+  const fs::path& dir = scratch.path();
   // The bundled flat grid of straight laths, pulled toward a smaller copy
   // of itself lifted by 0.05, with its flat energy weighed in.
   const std::string obj = (fs::path(XSHELL_SAMPLES_DIR) / "grid.obj").string();
@@ -203,7 +206,8 @@ TEST_CASE("design: a flat linkage's flat state is held in its plane") {
 }
 
 TEST_CASE("design: bad design inputs are refused with status 2 and a clear message") {
-  const fs::path dir = temporary_directory("design-bad");
+  const ScratchDirectory scratch("design-bad");
+  const fs::path& dir = scratch.path();
   write_text(dir / "dome.obj", dome_obj(3, 0.8));
   write_text(dir / "surface.obj", paraboloid_obj(5, 0.8, 1.0));
   write_text(dir / "short.json", R"({"positions": [[0, 0, 0]]})");

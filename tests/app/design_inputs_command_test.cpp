@@ -8,7 +8,8 @@
 namespace xshell::test {
 
 TEST_CASE("relax: a transformed sample held on its boundary under a line load") {
-  const fs::path dir = temporary_directory("design-inputs");
+  const ScratchDirectory scratch("design-inputs");
+  const fs::path& dir = scratch.path();
   write_text(dir / "run.json", R"({
   "linkage": ")" + (fs::path(XSHELL_SAMPLES_DIR) / "grid.obj").string() +
                                    R"(",
@@ -64,7 +65,8 @@ TEST_CASE(
   // second starts there and holds two of the sagged joints at the input. The
   // model has one support per selected vertex: the warning and the reason
   // name the configuration's entry, supports[1], not the model's sixth.
-  const fs::path dir = temporary_directory("far-selected");
+  const ScratchDirectory scratch("far-selected");
+  const fs::path& dir = scratch.path();
   const std::string corners = R"({"select": [1, 4, 9, 28], "fix": ["position"]})";
   const std::string load =
       R"("loads": {"line_loads": [{"rods": "all", "force_per_length": [0, 0, -40]}]})";

@@ -45,7 +45,8 @@ Eigen::Vector3d reaction_sum(const json& summary) {
 TEST_CASE(
     "relax: summary.json reports reactions, stresses, joint forces and stability, the VTK files "
     "exist") {
-  const fs::path dir = temporary_directory("engineering");
+  const ScratchDirectory scratch("engineering");
+  const fs::path& dir = scratch.path();
   write_text(dir / "run.json", engineering_config(dir / "out").dump(2));
   const CommandResult r = run_xshell("relax run.json", dir);
   CAPTURE(r.errors);
@@ -120,7 +121,8 @@ TEST_CASE("relax: a heavier, wider rod and a settled support show in the reactio
     (topology.segments[e].rod == 0 ? rod0 : others) += edge_length(graph, static_cast<int>(e));
   REQUIRE(rod0 > 0.0);
 
-  const fs::path dir = temporary_directory("engineering-mixed");
+  const ScratchDirectory scratch("engineering-mixed");
+  const fs::path& dir = scratch.path();
   json c = engineering_config(dir / "out");
   c["rods"] = {
       {{"rod", 0},
@@ -152,7 +154,8 @@ TEST_CASE(
   // at vertex 0 with "fix": ["position", "orientation"], tip load P L^2 / E I
   // = 2 along -z: the elastica's tip deflection is 0.49346 L; with 100 edges
   // the clamp at the vertex comes within 1e-4 L of it (second order).
-  const fs::path dir = temporary_directory("engineering-clamp");
+  const ScratchDirectory scratch("engineering-clamp");
+  const fs::path& dir = scratch.path();
   write_text(dir / "rod.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n");
   const json c = {
       {"linkage", (dir / "rod.obj").string()},
@@ -191,7 +194,8 @@ TEST_CASE(
 }
 
 TEST_CASE("relax: a rods entry or a displacement that does not apply exits 2 naming the key") {
-  const fs::path dir = temporary_directory("engineering-bad");
+  const ScratchDirectory scratch("engineering-bad");
+  const fs::path& dir = scratch.path();
   json c = engineering_config(dir / "out");
   c["rods"] = {{{"rod", 99}, {"material", {{"density", 1}}}}};
   write_text(dir / "run.json", c.dump(2));

@@ -11,7 +11,8 @@
 namespace xshell::test {
 
 TEST_CASE("fabricate: the configuration's linkage as drawn") {
-  const fs::path dir = temporary_directory("fabricate");
+  const ScratchDirectory scratch("fabricate");
+  const fs::path& dir = scratch.path();
   write_text(dir / "run.json", sample_config(dir / "out"));
   FabricateArguments args;
   args.config = (dir / "run.json").string();
@@ -39,7 +40,8 @@ TEST_CASE("fabricate: the configuration's linkage as drawn") {
 }
 
 TEST_CASE("fabricate --init: the angles of a relaxed state and the lengths of the rest state") {
-  const fs::path dir = temporary_directory("fabricate-init");
+  const ScratchDirectory scratch("fabricate-init");
+  const fs::path& dir = scratch.path();
   write_text(dir / "run.json", sample_config(dir / "relaxed"));
   const CommandResult relax = run_xshell("relax run.json --quiet", dir);
   CAPTURE(relax.errors);
@@ -67,7 +69,8 @@ TEST_CASE("fabricate --init: the angles of a relaxed state and the lengths of th
 }
 
 TEST_CASE("fabricate: invalid input exits 2 and an unwritable output 4") {
-  const fs::path dir = temporary_directory("fabricate-bad");
+  const ScratchDirectory scratch("fabricate-bad");
+  const fs::path& dir = scratch.path();
   FabricateArguments args;
   args.config = (dir / "missing.json").string();
   CHECK(run_fabricate(args) == kExitInvalidInput);

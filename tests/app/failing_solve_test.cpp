@@ -22,7 +22,8 @@ struct Failed {
 // Runs `config` (writing to `dir`/out) and checks everything a failed solve
 // must leave: status 3, one last line naming `status` and the reason, a
 // complete summary and state, a closed series.
-Failed run_failing(const Scratch& dir, const std::string& config, const std::string& status) {
+Failed run_failing(const ScratchDirectory& dir, const std::string& config,
+                   const std::string& status) {
   write_text(dir / "run.json", config);
   Failed f;
   f.run = run_xshell("relax run.json", dir.path());
@@ -49,7 +50,8 @@ Failed run_failing(const Scratch& dir, const std::string& config, const std::str
 // The written state is the one the summary describes, and a good start:
 // --init from it, with the limits lifted, runs (and the first recorded
 // energy is the summary's).
-void check_restart(const Scratch& dir, const nlohmann::json& summary, int expected_status = 0) {
+void check_restart(const ScratchDirectory& dir, const nlohmann::json& summary,
+                   int expected_status = 0) {
   write_text(dir / "again.json", sample_config(dir / "again"));
   const CommandResult r = run_xshell("relax again.json --init out/state.json", dir.path());
   CAPTURE(r.errors);
@@ -62,7 +64,7 @@ void check_restart(const Scratch& dir, const nlohmann::json& summary, int expect
 }  // namespace
 
 TEST_CASE("failing solve: Newton's iteration limit") {
-  Scratch dir("fail-iterations");
+  ScratchDirectory dir("fail-iterations");
   const Failed f = run_failing(
       dir, sample_config(dir / "out", R"(, "solver": {"max_iterations": 1})"), "max_iterations");
   CHECK(f.summary["reason"] == "no convergence in 1 iterations");
@@ -76,7 +78,7 @@ TEST_CASE("failing solve: Newton's iteration limit") {
 }
 
 TEST_CASE("failing solve: damped dynamics' step limit") {
-  Scratch dir("fail-steps");
+  ScratchDirectory dir("fail-steps");
   const Failed f = run_failing(
       dir, sample_config(dir / "out", R"(, "solver": {"method": "dynamics", "max_steps": 3})"),
       "max_iterations");
@@ -87,7 +89,7 @@ TEST_CASE("failing solve: damped dynamics' step limit") {
 }
 
 TEST_CASE("failing solve: a line search that cannot progress (tolerance below round-off)") {
-  Scratch dir("fail-line-search");
+  ScratchDirectory dir("fail-line-search");
   const Failed f =
       run_failing(dir, sample_config(dir / "out", R"(, "solver": {"gradient_tolerance": 1e-300})"),
                   "line_search_failed");
@@ -99,7 +101,7 @@ TEST_CASE("failing solve: a line search that cannot progress (tolerance below ro
 }
 
 TEST_CASE("failing solve: a gradient that is not finite (gravity times density overflows)") {
-  Scratch dir("fail-non-finite");
+  ScratchDirectory dir("fail-non-finite");
   std::string text = sample_config(dir / "out", R"(, "solver": {"max_iterations": 10})");
   const std::size_t density = text.find("\"density\": 1800");
   REQUIRE(density != std::string::npos);
@@ -126,7 +128,7 @@ TEST_CASE("failing solve: a gradient that is not finite (gravity times density o
 }
 
 TEST_CASE("failing solve: damped dynamics under a force of 1e30 stops as diverged") {
-  Scratch dir("fail-diverged");
+  ScratchDirectory dir("fail-diverged");
   // Before: every step to the limit (past 120 s on a large linkage, the
   // energy at -3.6e36).
   std::string text = sample_config(dir / "out", R"(, "solver": {"method": "dynamics"})");
@@ -139,7 +141,7 @@ TEST_CASE("failing solve: damped dynamics under a force of 1e30 stops as diverge
 }
 
 TEST_CASE("failing solve: a singular system (supports that leave rigid motions free)") {
-  Scratch dir("fail-singular");
+  ScratchDirectory dir("fail-singular");
   // Three z rollers: the grid may slide and turn in its plane, and a
   // horizontal force pushes it along x: no equilibrium exists.
   const Failed f = run_failing(dir, config_with(grid_obj(), R"(, "solver": {"max_iterations": 4},
@@ -156,7 +158,7 @@ TEST_CASE("failing solve: a singular system (supports that leave rigid motions f
 }
 
 TEST_CASE("relax: free rigid motions that nothing pushes: a warning, converged, not stable") {
-  Scratch dir("free-unloaded");
+  ScratchDirectory dir("free-unloaded");
   write_text(dir / "run.json", config_with(grid_obj(), R"(,
   "supports": [{"vertex": 0, "fix": ["z"]}, {"vertex": 5, "fix": ["z"]}, {"vertex": 27, "fix": ["z"]}])"));
   const CommandResult r = run_xshell("relax run.json", dir.path());

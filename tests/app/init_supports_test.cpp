@@ -32,7 +32,7 @@ std::string grid_config(const std::string& supports, const std::string& solver =
 
 // The grid opened from pi/2 to an average angle of 2.0 rad into opened/:
 // its corners move away from the input.
-void write_opened_state(const Scratch& dir) {
+void write_opened_state(const ScratchDirectory& dir) {
   write_text(dir / "grid.obj", flat_grid_obj());
   write_text(dir / "open.json", grid_config("", "", R"(,
   "deployment": {"average_opening_angle": 2.0, "steps": 4})"));
@@ -54,7 +54,7 @@ std::string suggested_displacement(const std::string& text) {
 }  // namespace
 
 TEST_CASE("relax --init: supports hold input + displacement and a moved one is warned of") {
-  const Scratch dir("init-supports");
+  const ScratchDirectory dir("init-supports");
   write_opened_state(dir);
   const nlohmann::json opened = read_json(dir / "opened" / "summary.json");
   const std::string corners = R"(, {"vertex": 0, "fix": ["position"], "displacement": [0, 0, 1e-6]},
@@ -99,7 +99,7 @@ TEST_CASE("relax --init: supports hold input + displacement and a moved one is w
 }
 
 TEST_CASE("relax --init: a failed solve's reason names the support that started far away") {
-  const Scratch dir("init-supports-failed");
+  const ScratchDirectory dir("init-supports-failed");
   write_opened_state(dir);
   write_text(dir / "pinned.json",
              grid_config(R"(, {"vertex": 0, "fix": ["position"]})", R"(, "max_iterations": 1)"));
@@ -114,7 +114,7 @@ TEST_CASE("relax --init: a failed solve's reason names the support that started 
 }
 
 TEST_CASE("relax: a small displacement without --init is not warned of") {
-  const Scratch dir("init-supports-none");
+  const ScratchDirectory dir("init-supports-none");
   write_text(dir / "grid.obj", flat_grid_obj());
   write_text(dir / "run.json",
              grid_config(R"(, {"vertex": 0, "fix": ["position"], "displacement": [0, 0, 1e-3]})"));
@@ -136,7 +136,7 @@ TEST_CASE("relax --init: a deployment with edge-vector joints names the joints, 
   // A state whose centre joint is closed to zero: its rods are parallel
   // there, which edge-vector joints cannot express. The deployment, which
   // needs rotation joints anyway, is what to report.
-  const Scratch dir("init-edge-vectors");
+  const ScratchDirectory dir("init-edge-vectors");
   write_text(dir / "grid.obj", flat_grid_obj());
   write_text(dir / "run.json", grid_config(""));
   REQUIRE(run_xshell("relax run.json --out relaxed", dir.path()).status == 0);

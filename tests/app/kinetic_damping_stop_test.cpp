@@ -22,7 +22,8 @@ struct Stopped {
 
 // Runs the sample by kinetic damping with `solver` settings and `loads`
 // instead of its own, killed after 120 s.
-Stopped run_sample(const Scratch& dir, const std::string& solver, const std::string& loads) {
+Stopped run_sample(const ScratchDirectory& dir, const std::string& solver,
+                   const std::string& loads) {
   std::string config = replacing(sample_config("out", R"(, "solver": )" + solver),
                                  R"("subdivisions": 6)", R"("subdivisions": 8)");
   if (!loads.empty()) config = replacing(config, R"({"vertex": 13, "force": [0, 0, -5.0]})", loads);
@@ -41,7 +42,7 @@ Stopped run_sample(const Scratch& dir, const std::string& solver, const std::str
 TEST_CASE("kinetic damping: a tolerance of 1e-30 on the sample stops on stagnation" *
           doctest::test_suite("validation")) {
   // Before: killed after 120 s, at some 16,000 of 1,000,000 iterations.
-  Scratch dir("kd-stagnation");
+  ScratchDirectory dir("kd-stagnation");
   const Stopped s =
       run_sample(dir, R"({"method": "kinetic-damping", "gradient_tolerance": 1e-30})", "");
   INFO("stderr: " << s.command.errors);
@@ -58,7 +59,7 @@ TEST_CASE("kinetic damping: a tolerance of 1e-30 on the sample stops on stagnati
 TEST_CASE("kinetic damping: a force of 1e30 on the sample stops as diverged" *
           doctest::test_suite("validation")) {
   // Before: killed after 120 s, the energy at 1.5e54 and the gradient growing.
-  Scratch dir("kd-divergence");
+  ScratchDirectory dir("kd-divergence");
   const Stopped s = run_sample(dir, R"({"method": "kinetic-damping"})",
                                R"({"vertex": 30, "force": [1e30, 0, -1e30]})");
   INFO("stderr: " << s.command.errors);

@@ -31,7 +31,7 @@ std::string grid_config(const std::string& deployment) {
 // A state of the grid whose centre joint (vertex 4) is closed through zero
 // to -0.1 rad, as a run that drove it there would leave it: the relaxed
 // grid's state with that joint's alpha changed.
-void write_closed_state(const Scratch& dir) {
+void write_closed_state(const ScratchDirectory& dir) {
   write_text(dir / "grid.obj", flat_grid_obj());
   write_text(dir / "run.json", grid_config(""));
   const CommandResult r = run_xshell("relax run.json --out relaxed", dir.path());
@@ -51,7 +51,7 @@ void write_closed_state(const Scratch& dir) {
 }  // namespace
 
 TEST_CASE("relax: the summary gives the range of the opening angles, no warning inside (0, pi)") {
-  const Scratch dir("angles-inside");
+  const ScratchDirectory dir("angles-inside");
   write_text(dir / "grid.obj", flat_grid_obj());
   write_text(dir / "run.json", grid_config(""));
   const CommandResult r = run_xshell("relax run.json", dir.path());
@@ -67,7 +67,7 @@ TEST_CASE("relax: the summary gives the range of the opening angles, no warning 
 }
 
 TEST_CASE("relax: a joint closed through zero is warned of and listed in the summary") {
-  const Scratch dir("angles-outside");
+  const ScratchDirectory dir("angles-outside");
   write_closed_state(dir);
   // The closed joint's angle held where the state has it.
   std::string held = grid_config("");
@@ -96,7 +96,7 @@ TEST_CASE("relax: a joint closed through zero is warned of and listed in the sum
 }
 
 TEST_CASE("relax: deployment.csv gives each step's smallest and largest opening angle") {
-  const Scratch dir("angles-deployment");
+  const ScratchDirectory dir("angles-deployment");
   write_closed_state(dir);
   // Opened back from -0.1 rad to 0.5 rad at the centre: step 0 (the start,
   // every joint at -0.1 rad) is outside (0, pi) and warned of, the end is
@@ -140,7 +140,7 @@ TEST_CASE("Manta ray relaxed flat: its smallest opening angle and the joints thr
           doctest::test_suite("validation")) {
   const fs::path obj = fs::path(XSHELL_SHARED_DATA_DIR) / "manta_ray_5ca2f7ab.obj";
   if (!fs::exists(obj)) XSHELL_SKIP(obj.string() + " is absent");
-  const Scratch dir("angles-manta");
+  const ScratchDirectory dir("angles-manta");
   // The designs' laths (mm, 10 x 7, E = 20000 MPa), straight at rest,
   // relaxed from the flat input under the default pin.
   const std::string config = R"({

@@ -26,7 +26,7 @@ int last_step(const fs::path& dir) {
 }  // namespace
 
 TEST_CASE("output folder: a re-run leaves none of the earlier run's files") {
-  Scratch dir("folder-rerun");
+  ScratchDirectory dir("folder-rerun");
   write_text(dir / "run.json", sample_config("out"));
   const CommandResult first = run_xshell("relax run.json --quiet", dir.path());
   REQUIRE(first.status == 0);
@@ -54,7 +54,7 @@ TEST_CASE("output folder: a re-run leaves none of the earlier run's files") {
 }
 
 TEST_CASE("output folder: a second run writing the same folder at once is refused") {
-  Scratch dir("folder-locked");
+  ScratchDirectory dir("folder-locked");
   write_text(dir / "run.json", sample_config("out"));
   REQUIRE(run_xshell("relax run.json --quiet", dir.path()).status == 0);
   const std::string summary = read_text(dir / "out" / "summary.json");
@@ -76,7 +76,7 @@ TEST_CASE("output folder: a second run writing the same folder at once is refuse
 }
 
 TEST_CASE("output folder: a run started while another writes the folder is refused") {
-  Scratch dir("folder-concurrent");
+  ScratchDirectory dir("folder-concurrent");
   // A slow run (kinetic damping, every reset written) and a second one.
   write_text(dir / "slow.json",
              sample_config("out", R"(, "solver": {"method": "kinetic-damping"})"));
@@ -95,7 +95,7 @@ TEST_CASE("output folder: a run started while another writes the folder is refus
 }
 
 TEST_CASE("output folder: an input named like an output in the folder is refused, not replaced") {
-  Scratch dir("folder-collision");
+  ScratchDirectory dir("folder-collision");
   fs::create_directories(dir / "out");
   fs::copy_file(grid_obj(), dir / "out" / "state.json");  // a linkage named state.json
   write_text(dir / "linkage.json", replacing(sample_config("out"), grid_obj(), "out/state.json"));
@@ -142,7 +142,7 @@ TEST_CASE("output folder: an input named like an output in the folder is refused
 }
 
 TEST_CASE("output folder: a long run keeps at most output.max_steps VTK steps, and says so") {
-  Scratch dir("folder-max-steps");
+  ScratchDirectory dir("folder-max-steps");
   // Kinetic damping writes a step at every reset (26 here); before, a
   // million iterations wrote thousands of steps without a word (129 MB
   // after 998 steps of a deployment).

@@ -13,7 +13,8 @@ extern char** environ;
 namespace xshell::test {
 
 TEST_CASE("relax: the sample runs and writes summary.json, state.json and the VTK series") {
-  const fs::path dir = temporary_directory("sample");
+  const ScratchDirectory scratch("sample");
+  const fs::path& dir = scratch.path();
   write_text(dir / "run.json", sample_config(dir / "out"));
   const CommandResult r = run_xshell("relax run.json", dir);
   CAPTURE(r.errors);
@@ -70,7 +71,8 @@ std::map<std::string, int> compressors(const fs::path& dir) {
 }
 
 TEST_CASE("relax: output.compression chooses the compressor of every VTK file, LZ4 by default") {
-  const fs::path dir = temporary_directory("compression");
+  const ScratchDirectory scratch("compression");
+  const fs::path& dir = scratch.path();
   const std::string config = sample_config(dir / "lz4");
   std::string zlib = sample_config(dir / "zlib");
   const std::string end = "zlib\"}";
@@ -92,7 +94,8 @@ TEST_CASE("relax: output.compression chooses the compressor of every VTK file, L
 }
 
 TEST_CASE("relax --init from a written state reproduces it without iterating") {
-  const fs::path dir = temporary_directory("init");
+  const ScratchDirectory scratch("init");
+  const fs::path& dir = scratch.path();
   write_text(dir / "run.json", sample_config(dir / "first"));
   REQUIRE(run_xshell("relax run.json", dir).status == 0);
   const CommandResult r = run_xshell("relax run.json --init first/state.json --out second", dir);
@@ -117,7 +120,8 @@ TEST_CASE("relax --init accepts a state of the same linkage under other loads an
   // A state is only where the solve starts: a sweep over loads or materials
   // continues from the previous equilibrium and reaches the same answer as
   // a start from the flat input.
-  const fs::path dir = temporary_directory("init-sweep");
+  const ScratchDirectory scratch("init-sweep");
+  const fs::path& dir = scratch.path();
   write_text(dir / "light.json", sample_config(dir / "light"));
   std::string heavy = sample_config(dir / "heavy");
   heavy.replace(heavy.find("\"young_modulus\": 2.0e10"), 23, "\"young_modulus\": 1.0e10");
@@ -149,7 +153,8 @@ TEST_CASE("relax --init accepts a state of the same linkage under other loads an
 }
 
 TEST_CASE("relax: invalid input exits 2 with one clear message") {
-  const fs::path dir = temporary_directory("invalid");
+  const ScratchDirectory scratch("invalid");
+  const fs::path& dir = scratch.path();
   struct Case {
     const char* name;
     std::string config;
@@ -186,7 +191,8 @@ TEST_CASE("relax: invalid input exits 2 with one clear message") {
 }
 
 TEST_CASE("relax --init refuses a state that belongs to another linkage") {
-  const fs::path dir = temporary_directory("foreign");
+  const ScratchDirectory scratch("foreign");
+  const fs::path& dir = scratch.path();
   write_text(dir / "saddle.json", sample_config(dir / "saddle", "", "saddle.obj"));
   write_text(dir / "grid.json", sample_config(dir / "grid"));
   REQUIRE(run_xshell("relax saddle.json", dir).status == 0);
@@ -196,7 +202,8 @@ TEST_CASE("relax --init refuses a state that belongs to another linkage") {
 }
 
 TEST_CASE("relax: an output directory that cannot be written exits 4") {
-  const fs::path dir = temporary_directory("unwritable");
+  const ScratchDirectory scratch("unwritable");
+  const fs::path& dir = scratch.path();
   write_text(dir / "a_file", "not a directory");
   write_text(dir / "run.json", sample_config(dir / "a_file" / "out"));
   const CommandResult r = run_xshell("relax run.json", dir);
@@ -205,7 +212,8 @@ TEST_CASE("relax: an output directory that cannot be written exits 4") {
 }
 
 TEST_CASE("relax: SIGINT writes the last state and an interrupted summary, and exits 130") {
-  const fs::path dir = temporary_directory("interrupt");
+  const ScratchDirectory scratch("interrupt");
+  const fs::path& dir = scratch.path();
   // Slow enough to interrupt: damped dynamics with fictitious masses.
   write_text(
       dir / "run.json",

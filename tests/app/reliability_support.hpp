@@ -1,7 +1,6 @@
 // Helpers of the reliability tests (bad input, failing solves, signals):
-// scratch directories that clean up, runs without root's privileges, a
-// process to interrupt, and checks that every output under a final name is
-// complete.
+// runs without root's privileges, a process to interrupt, and checks that
+// every output under a final name is complete.
 #pragma once
 
 #include <doctest/doctest.h>
@@ -22,26 +21,6 @@
 extern char** environ;
 
 namespace xshell::test {
-
-// A fresh temporary directory, removed with everything in it at scope exit.
-class Scratch {
- public:
-  explicit Scratch(const std::string& name) : path_(temporary_directory(name)) {}
-  ~Scratch() {
-    std::error_code ignored;
-    fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ignored);
-    for (const auto& entry : fs::recursive_directory_iterator(path_, ignored))
-      fs::permissions(entry.path(), fs::perms::owner_all, fs::perm_options::add, ignored);
-    fs::remove_all(path_, ignored);
-  }
-  Scratch(const Scratch&) = delete;
-  Scratch& operator=(const Scratch&) = delete;
-  const fs::path& path() const { return path_; }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-
- private:
-  fs::path path_;
-};
 
 inline bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;

@@ -14,7 +14,7 @@ namespace xshell::test {
 namespace {
 
 // A relaxed grid sample in `dir`/run (its rods_*.vtp and solids_*.vtp).
-void relax_sample(const Scratch& dir) {
+void relax_sample(const ScratchDirectory& dir) {
   write_text(dir / "run.json", sample_config(dir / "run", R"(, "solver": {"max_iterations": 3})"));
   const CommandResult r = run_xshell("relax run.json", dir.path());
   INFO("stderr: " << r.errors);
@@ -32,7 +32,7 @@ void check_status(const CommandResult& r, int status, const std::vector<std::str
 }  // namespace
 
 TEST_CASE("render command: input that is no VTK PolyData is invalid input (status 2)") {
-  Scratch dir("render-input");
+  ScratchDirectory dir("render-input");
   relax_sample(dir);
   const std::string rods = read_text(dir / "run" / "rods_000000.vtp");
   REQUIRE(rods.size() > 1000);
@@ -65,7 +65,7 @@ TEST_CASE("render command: input that is no VTK PolyData is invalid input (statu
 }
 
 TEST_CASE("render command: options out of range are invalid input (status 2)") {
-  Scratch dir("render-options");
+  ScratchDirectory dir("render-options");
   relax_sample(dir);
   struct Case {
     std::string options, words;
@@ -99,7 +99,7 @@ TEST_CASE("render command: options out of range are invalid input (status 2)") {
 TEST_CASE(
     "render command: a picture that cannot be written is status 4 and a written one 0 (needs a "
     "display)") {
-  Scratch dir("render-output");
+  ScratchDirectory dir("render-output");
   relax_sample(dir);
   // Without a display the picture cannot be made: 4 as well.
   check_status(run_xshell_limited("render run --out no_folder/p.png", dir.path(), 60), 4, {});
@@ -115,7 +115,7 @@ TEST_CASE(
 TEST_CASE(
     "render command: views and an exaggerated deflection and a joints-only file draw and no "
     "reference geometry is status 2 (needs a display)") {
-  Scratch dir("render-views");
+  ScratchDirectory dir("render-views");
   relax_sample(dir);
   fs::create_directory(dir / "alone");
   fs::copy_file(dir / "run" / "joints_000001.vtp", dir / "alone" / "joints_000001.vtp");

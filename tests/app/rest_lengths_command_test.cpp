@@ -24,16 +24,14 @@ std::string lath_config(const std::string& extra) {
          extra + "}";
 }
 
-fs::path lath_folder(const std::string& name) {
-  const fs::path dir = temporary_directory(name);
-  write_text(dir / "lath.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n");
-  return dir;
-}
+void write_lath(const fs::path& dir) { write_text(dir / "lath.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n"); }
 
 }  // namespace
 
 TEST_CASE("rest_lengths: a free lath relaxes to its given rest length, and is cut to it") {
-  const fs::path dir = lath_folder("rest-lengths-lath");
+  const ScratchDirectory scratch("rest-lengths-lath");
+  const fs::path& dir = scratch.path();
+  write_lath(dir);
   write_text(dir / "run.json", lath_config(R"(, "rest_lengths": [1.02])"));
   const CommandResult r = run_xshell("relax run.json", dir);
   CAPTURE(r.errors);
@@ -61,7 +59,9 @@ TEST_CASE("rest_lengths: a free lath relaxes to its given rest length, and is cu
 }
 
 TEST_CASE("rest_lengths: the lath's weight follows its rest length") {
-  const fs::path dir = lath_folder("rest-lengths-weight");
+  const ScratchDirectory scratch("rest-lengths-weight");
+  const fs::path& dir = scratch.path();
+  write_lath(dir);
   std::string config =
       lath_config(R"(, "rest_lengths": [1.02], "loads": {"gravity": [0, 0, -10]})");
   config.replace(config.find("\"young_modulus\""), 0, "\"density\": 1000, ");
@@ -79,7 +79,9 @@ TEST_CASE("rest_lengths: the lath's weight follows its rest length") {
 }
 
 TEST_CASE("rest_lengths: --init takes a state of the same rest lengths, refuses one of others") {
-  const fs::path dir = lath_folder("rest-lengths-init");
+  const ScratchDirectory scratch("rest-lengths-init");
+  const fs::path& dir = scratch.path();
+  write_lath(dir);
   write_text(dir / "run.json", lath_config(R"(, "rest_lengths": [1.02])"));
   write_text(dir / "other.json", lath_config(R"(, "rest_lengths": [1.03])"));
   write_text(dir / "drawn.json", lath_config(""));
@@ -106,7 +108,9 @@ TEST_CASE("rest_lengths: --init takes a state of the same rest lengths, refuses 
 }
 
 TEST_CASE("rest_lengths: a wrong count or bad values exit with status 2 naming the key") {
-  const fs::path dir = lath_folder("rest-lengths-bad");
+  const ScratchDirectory scratch("rest-lengths-bad");
+  const fs::path& dir = scratch.path();
+  write_lath(dir);
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"[1.0, 1.0]",
        "run.json: rest_lengths: 2 rest lengths given; the linkage has 1 segment, so it needs 1"},
@@ -141,7 +145,8 @@ TEST_CASE("rest_lengths: a deployment of the grid with lengthened x laths comple
     const Eigen::Vector3d d = graph.vertices[b] - graph.vertices[a];
     lengths.push_back(d.norm() * (d.y() == 0.0 ? 1.03 : 1.0));
   }
-  const fs::path dir = temporary_directory("rest-lengths-deploy");
+  const ScratchDirectory scratch("rest-lengths-deploy");
+  const fs::path& dir = scratch.path();
   nlohmann::json config = {
       {"linkage", obj.string()},
       {"subdivisions", 4},

@@ -13,14 +13,14 @@ namespace {
 
 // The sample's configuration (supports and loads: Newton iterates a few
 // times) writing to "out" beside it.
-void write_sample(const Scratch& dir, const std::string& extra = "") {
+void write_sample(const ScratchDirectory& dir, const std::string& extra = "") {
   write_text(dir / "run.json", sample_config("out", extra));
 }
 
 }  // namespace
 
 TEST_CASE("run outcome: a step file that cannot be written stops the run with status 4") {
-  Scratch dir("outcome-step-blocked");
+  ScratchDirectory dir("outcome-step-blocked");
   write_sample(dir);
   // A folder where the third step's rods file goes: steps 0 and 1 are
   // written, step 2 fails.
@@ -50,7 +50,7 @@ TEST_CASE("run outcome: a step file that cannot be written stops the run with st
 }
 
 TEST_CASE("run outcome: a full disk (file size limit) is status 4 naming the first file and why") {
-  Scratch dir("outcome-full");
+  ScratchDirectory dir("outcome-full");
   write_sample(dir);
   // A file size limit of 8 KiB fails writes as a full disk does (with
   // "File too large" instead of "No space left on device"); SIGXFSZ ignored
@@ -77,7 +77,7 @@ TEST_CASE("run outcome: a full disk (file size limit) is status 4 naming the fir
 }
 
 TEST_CASE("run outcome: an edge of 3e-12 is drawn, and is no output failure") {
-  Scratch dir("outcome-short-edge");
+  ScratchDirectory dir("outcome-short-edge");
   // Vertex 3 is 3e-12 above vertex 2 (the linkage is 1.4 across). Before,
   // the solids' sweep refused the edge, the run exited 4 ("rod 1: edge 2
   // has zero length", no file named) and the summary said "interrupted".
@@ -95,7 +95,7 @@ TEST_CASE("run outcome: an edge of 3e-12 is drawn, and is no output failure") {
 }
 
 TEST_CASE("run outcome: a run that did not converge claims no stability") {
-  Scratch dir("outcome-not-converged");
+  ScratchDirectory dir("outcome-not-converged");
   write_sample(dir, R"(, "solver": {"max_iterations": 1})");
   const CommandResult r = run_xshell("relax run.json --quiet", dir.path());
   CAPTURE(r.errors);
@@ -114,7 +114,7 @@ TEST_CASE("run outcome: a run that did not converge claims no stability") {
 }
 
 TEST_CASE("run outcome: an empty file or folder name on the command line is a usage error") {
-  Scratch dir("outcome-empty-path");
+  ScratchDirectory dir("outcome-empty-path");
   write_sample(dir);
   struct Case {
     std::string args, words;

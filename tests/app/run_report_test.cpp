@@ -22,7 +22,7 @@ std::vector<nlohmann::json> json_lines(const std::string& text) {
 }
 
 // The sample (run.json, writing to "out") run with `options`.
-CommandResult run_sample(const Scratch& dir, const std::string& options,
+CommandResult run_sample(const ScratchDirectory& dir, const std::string& options,
                          const std::string& extra = "") {
   write_text(dir / "run.json", sample_config("out", extra));
   return run_xshell("relax run.json " + options, dir.path());
@@ -31,7 +31,7 @@ CommandResult run_sample(const Scratch& dir, const std::string& options,
 }  // namespace
 
 TEST_CASE("run report: timings are finite, non-negative and add up to at most the wall time") {
-  Scratch dir("report-timings");
+  ScratchDirectory dir("report-timings");
   const CommandResult r = run_sample(dir, "--quiet");
   CAPTURE(r.errors);
   REQUIRE(r.status == 0);
@@ -54,7 +54,7 @@ TEST_CASE("run report: timings are finite, non-negative and add up to at most th
 }
 
 TEST_CASE("run report: --progress json prints an object per line, the times last") {
-  Scratch dir("report-json");
+  ScratchDirectory dir("report-json");
   const CommandResult r = run_sample(dir, "--progress json");
   CAPTURE(r.errors);
   REQUIRE(r.status == 0);
@@ -87,7 +87,7 @@ TEST_CASE("run report: --progress json prints an object per line, the times last
 }
 
 TEST_CASE("run report: without a terminal the default is a few plain lines, never silent") {
-  Scratch dir("report-plain");
+  ScratchDirectory dir("report-plain");
   write_text(dir / "run.json", sample_config("out"));
   const CommandResult r = run_xshell("relax run.json", dir.path());
   CAPTURE(r.errors);
@@ -105,7 +105,7 @@ TEST_CASE("run report: without a terminal the default is a few plain lines, neve
 }
 
 TEST_CASE("run report: the analysis' time budget stops it with the status time_limit") {
-  Scratch dir("report-budget");
+  ScratchDirectory dir("report-budget");
   const CommandResult r = run_sample(dir, "--quiet", R"(, "analysis": {"max_seconds": 1e-9})");
   CAPTURE(r.errors);
   REQUIRE(r.status == 0);  // the equilibrium converged; its analysis was cut short

@@ -33,7 +33,8 @@ std::string column_config(const nlohmann::json& solver) {
 }  // namespace
 
 TEST_CASE("relax: a saddle is left on the chosen side and listed, or kept on request") {
-  const fs::path dir = temporary_directory("saddle");
+  const ScratchDirectory scratch("saddle");
+  const fs::path& dir = scratch.path();
   write_text(dir / "column.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n");
   int checked = 0;
   for (double side : {1.0, -1.0}) {

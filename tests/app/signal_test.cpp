@@ -14,7 +14,7 @@ namespace xshell::test {
 namespace {
 
 // Slow enough to interrupt: damped dynamics with fictitious masses.
-std::string slow_dynamics(const Scratch& dir) {
+std::string slow_dynamics(const ScratchDirectory& dir) {
   return sample_config(
       dir / "out",
       R"(, "solver": {"method": "dynamics", "mass": "fictitious", "max_steps": 1000000})");
@@ -30,7 +30,7 @@ std::string endless_newton() {
 
 // Starts `config` in `dir`, waits for the 4th written step, sends `number`
 // and checks the interrupted run's outputs. Returns the summary.
-nlohmann::json interrupt(const Scratch& dir, const std::string& config, int number,
+nlohmann::json interrupt(const ScratchDirectory& dir, const std::string& config, int number,
                          const std::string& wait_for = "rods_000003.vtp") {
   write_text(dir / "run.json", config);
   RelaxProcess run(dir / "run.json", dir.path());
@@ -72,14 +72,14 @@ nlohmann::json interrupt(const Scratch& dir, const std::string& config, int numb
 }  // namespace
 
 TEST_CASE("interrupt: SIGTERM during damped dynamics") {
-  Scratch dir("sigterm-dynamics");
+  ScratchDirectory dir("sigterm-dynamics");
   const nlohmann::json s = interrupt(dir, slow_dynamics(dir), SIGTERM);
   CHECK(s["solver"] == "dynamics");
   CHECK(s["iterations"].get<int>() >= 3);
 }
 
 TEST_CASE("interrupt: SIGINT during damped dynamics") {
-  Scratch dir("sigint-dynamics");
+  ScratchDirectory dir("sigint-dynamics");
   const nlohmann::json s = interrupt(dir, slow_dynamics(dir), SIGINT);
   CHECK(s["iterations"].get<int>() >= 3);
 }
@@ -87,7 +87,7 @@ TEST_CASE("interrupt: SIGINT during damped dynamics") {
 TEST_CASE("interrupt: SIGTERM and SIGINT during Newton, the state restarts the run") {
   for (const int number : {SIGTERM, SIGINT}) {
     CAPTURE(number);
-    Scratch dir("signal-newton");
+    ScratchDirectory dir("signal-newton");
     const nlohmann::json s = interrupt(dir, endless_newton(), number);
     CHECK(s["solver"] == "newton");
     CHECK(s["iterations"].get<int>() >= 3);
@@ -106,7 +106,7 @@ TEST_CASE("interrupt: SIGTERM and SIGINT during Newton, the state restarts the r
 }
 
 TEST_CASE("interrupt: SIGINT during a deployment") {
-  Scratch dir("sigint-deployment");
+  ScratchDirectory dir("sigint-deployment");
   const nlohmann::json s = interrupt(
       dir,
       config_with(grid_obj(), R"(, "deployment": {"average_opening_angle": 1.2, "steps": 400})"),
@@ -135,7 +135,7 @@ TEST_CASE("interrupt: SIGKILL at any moment leaves no truncated file under a fin
   for (const char* step :
        {"rods_000001.vtp", "rods_000004.vtp", "frames_000006.vtp", "joints_000009.vtp"}) {
     CAPTURE(step);
-    Scratch dir("sigkill");
+    ScratchDirectory dir("sigkill");
     write_text(dir / "run.json", slow_dynamics(dir));
     RelaxProcess run(dir / "run.json", dir.path());
     REQUIRE(run.started());
@@ -155,7 +155,7 @@ TEST_CASE("interrupt: SIGKILL at any moment leaves no truncated file under a fin
 }
 
 TEST_CASE("interrupt: a closed stderr (SIGPIPE) does not stop a run before its outputs") {
-  Scratch dir("sigpipe");
+  ScratchDirectory dir("sigpipe");
   write_text(dir / "run.json", sample_config(dir / "out"));
   int fds[2];
   REQUIRE(pipe(fds) == 0);
@@ -181,7 +181,7 @@ TEST_CASE("interrupt: a closed stderr (SIGPIPE) does not stop a run before its o
 }
 
 TEST_CASE("interrupt: past the grace period the last written step's state is saved at once") {
-  Scratch dir("interrupt-grace");
+  ScratchDirectory dir("interrupt-grace");
   // --grace 0: the run may not finish the iteration in progress (on a large
   // linkage one takes minutes: before, SIGTERM waited for it). Whichever
   // comes first, the iteration's end or the grace period's, the run ends
@@ -220,7 +220,7 @@ TEST_CASE("interrupt: past the grace period the last written step's state is sav
 }
 
 TEST_CASE("interrupt: --grace out of range is a usage error") {
-  Scratch dir("interrupt-grace-usage");
+  ScratchDirectory dir("interrupt-grace-usage");
   write_text(dir / "run.json", endless_newton());
   const CommandResult r = run_xshell("relax run.json --grace -1", dir.path());
   CHECK(r.status == 2);

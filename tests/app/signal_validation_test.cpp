@@ -40,7 +40,7 @@ TEST_CASE("interrupt: SIGTERM during a long iteration ends the run within the gr
           doctest::test_suite("validation")) {
   const fs::path obj = fs::path(XSHELL_SHARED_DATA_DIR) / "large_6d35a972.obj";
   if (!fs::exists(obj)) XSHELL_SKIP(XSHELL_SHARED_DATA_DIR " is absent");
-  Scratch dir("sigterm-long-iteration");
+  ScratchDirectory dir("sigterm-long-iteration");
   write_text(dir / "run.json", large_design(obj, 1000));
   // A grace period shorter than an iteration, so that the signal usually
   // finds the iteration in progress when it runs out.

@@ -61,7 +61,8 @@ void check_same_equilibrium(const nlohmann::json& a, const nlohmann::json& b) {
 }  // namespace
 
 TEST_CASE("relax: kinetic damping reaches Newton's equilibrium of the sample") {
-  const fs::path dir = temporary_directory("agreement_kinetic");
+  const ScratchDirectory scratch("agreement_kinetic");
+  const fs::path& dir = scratch.path();
   const nlohmann::json newton = solve_sample(dir, "newton");
   const nlohmann::json kinetic = solve_sample(dir, "kinetic-damping");
   CHECK(kinetic["iterations"].get<long>() > newton["iterations"].get<long>());
@@ -71,7 +72,8 @@ TEST_CASE("relax: kinetic damping reaches Newton's equilibrium of the sample") {
 }
 
 TEST_CASE("relax: damped dynamics reaches Newton's equilibrium of the sample, in both forms") {
-  const fs::path dir = temporary_directory("agreement_dynamics");
+  const ScratchDirectory scratch("agreement_dynamics");
+  const fs::path& dir = scratch.path();
   const nlohmann::json newton = solve_sample(dir, "newton");
   const nlohmann::json second = solve_sample(dir, "dynamics");
   CHECK(second["simulated_time"].get<double>() > 0.0);

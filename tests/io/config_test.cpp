@@ -13,6 +13,7 @@
 #include "io/input_error.hpp"
 #include "io/problem_setup.hpp"
 #include "linkage/topology.hpp"
+#include "scratch_directory.hpp"
 
 namespace xshell::test {
 namespace {
@@ -155,15 +156,15 @@ TEST_CASE("config: paths are resolved against the configuration's folder") {
   CHECK(here.output.directory == "out");
 
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "xshell_config_test";
-  fs::create_directories(dir);
+  const ScratchDirectory scratch("config");
+  const fs::path& dir = scratch.path();
   const fs::path file = dir / "run.json";
   std::ofstream(file) << kMinimal.dump(2);
   const Config c = read_config(file.string());
   CHECK(c.source == file.string());
   CHECK(c.linkage == (dir / "grid.obj").string());
   CHECK(c.output.directory == (dir / "out").string());
-  fs::remove_all(dir);
+  fs::remove(file);
   const std::string expected = "cannot open configuration file '" + file.string() + "'";
   CHECK_THROWS_WITH_AS(read_config(file.string()), doctest::Contains(expected.c_str()), InputError);
 }
@@ -459,9 +460,8 @@ TEST_CASE("config: supports that cannot apply are named by their key and not bla
 
 TEST_CASE("config: read_config refuses a FIFO or a device or an oversized file at once") {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "xshell-config-kinds";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const ScratchDirectory scratch("config-kinds");
+  const fs::path& dir = scratch.path();
   REQUIRE(::mkfifo((dir / "fifo.json").c_str(), 0600) == 0);
   auto reading = std::async(std::launch::async, [&]() -> std::string {
     try {
@@ -486,7 +486,6 @@ TEST_CASE("config: read_config refuses a FIFO or a device or an oversized file a
   CHECK_THROWS_WITH_AS(read_config((dir / "huge.json").string()),
                        doctest::Contains("a configuration file may have at most 268435456"),
                        InputError);
-  fs::remove_all(dir);
 }
 
 }  // namespace xshell::test

@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <random>
 #include <set>
 #include <sstream>
 
@@ -17,6 +16,7 @@
 #include "io/fabrication_svg.hpp"
 #include "io/obj_reader.hpp"
 #include "io/output_error.hpp"
+#include "scratch_directory.hpp"
 
 namespace xshell::test {
 
@@ -45,15 +45,6 @@ RodLinkage tee() {
   g.vertices = {{0, 0, 0}, {-1, 0.1, 0}, {1.1, 0, 0.2}, {0.2, 1.0, -0.1}};
   g.edges = {{1, 0}, {0, 2}, {0, 3}};
   return RodLinkage(g, options(RestShape::Input));
-}
-
-fs::path fresh_directory(const std::string& name) {
-  std::random_device rd;
-  const fs::path dir =
-      fs::temp_directory_path() / ("xshell-fabrication-" + name + "-" + std::to_string(rd()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
 }
 
 std::string read_text(const fs::path& path) {
@@ -223,7 +214,8 @@ TEST_CASE("fabrication.svg: well-formed XML with one lath per rod and one hole p
 }
 
 TEST_CASE("write_fabrication: the three files written atomically into an existing directory") {
-  const fs::path dir = fresh_directory("write");
+  const ScratchDirectory scratch("fabrication");
+  const fs::path& dir = scratch.path();
   const RodLinkage linkage = sample_grid();
   write_fabrication(linkage, FabricationUnits{}, dir);
   const json j = json::parse(read_text(dir / "fabrication.json"));
@@ -237,7 +229,6 @@ TEST_CASE("write_fabrication: the three files written atomically into an existin
   }
   CHECK(files == 3);
   CHECK_THROWS_AS(write_fabrication(linkage, FabricationUnits{}, dir / "missing"), OutputError);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("fabrication_units: named after the configuration's linkage file") {

@@ -12,34 +12,14 @@
 #include <filesystem>
 #include <fstream>
 #include <future>
-#include <random>
 
 #include "io/input_error.hpp"
+#include "scratch_directory.hpp"
 
 namespace xshell::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A fresh temporary folder, removed at scope exit.
-class Folder {
- public:
-  explicit Folder(const std::string& name) {
-    std::random_device rd;
-    path_ = fs::temp_directory_path() / ("xshell-input-" + name + "-" + std::to_string(rd()));
-    fs::create_directories(path_);
-  }
-  ~Folder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  Folder(const Folder&) = delete;
-  Folder& operator=(const Folder&) = delete;
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-
- private:
-  fs::path path_;
-};
 
 const InputFileKind kSmall{"test file", 1000};
 
@@ -64,7 +44,7 @@ std::string refusal(const fs::path& path, const InputFileKind& kind = kSmall) {
 }  // namespace
 
 TEST_CASE("input file: a regular file is read whole") {
-  Folder dir("regular");
+  ScratchDirectory dir("regular");
   std::string text;
   for (int i = 0; i < 200000; ++i) text += static_cast<char>(i % 251);  // NULs included
   std::ofstream(dir / "f", std::ios::binary) << text;
@@ -74,7 +54,7 @@ TEST_CASE("input file: a regular file is read whole") {
 }
 
 TEST_CASE("input file: a folder or a FIFO or a device or a socket is refused unread") {
-  Folder dir("kinds");
+  ScratchDirectory dir("kinds");
   fs::create_directory(dir / "folder");
   CHECK(refusal(dir / "folder") == "cannot open test file: it is a folder, not a file");
   REQUIRE(::mkfifo((dir / "fifo").c_str(), 0600) == 0);
@@ -97,7 +77,7 @@ TEST_CASE("input file: a folder or a FIFO or a device or a socket is refused unr
 }
 
 TEST_CASE("input file: a file above its kind's limit is refused before it is read") {
-  Folder dir("size");
+  ScratchDirectory dir("size");
   std::ofstream(dir / "small") << std::string(1000, 'x');
   CHECK(read_input_file((dir / "small").string(), kSmall, "x").size() == 1000);
   std::ofstream(dir / "large") << std::string(1001, 'x');

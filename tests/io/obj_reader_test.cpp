@@ -12,6 +12,7 @@
 
 #include "io/input_error.hpp"
 #include "io/input_file.hpp"
+#include "scratch_directory.hpp"
 #include "skip.hpp"
 
 namespace xshell::test {
@@ -108,7 +109,8 @@ TEST_CASE("obj: a positive index may name a vertex defined further down") {
 }
 
 TEST_CASE("obj: read_obj reads a file and reports one that cannot be opened") {
-  const auto path = std::filesystem::temp_directory_path() / "xshell_obj_reader_test.obj";
+  const ScratchDirectory dir("obj-reader");
+  const auto path = dir / "x.obj";
   std::ofstream(path) << kX << "l 1 3\nl 3 2\nl 4 3\nl 3 5\n";
   const LineGraph g = read_obj(path.string());
   CHECK(g.vertices.size() == 5);
@@ -288,9 +290,8 @@ TEST_CASE("obj: a NUL byte or a long token is quoted escaped and short") {
 
 TEST_CASE("obj: read_obj refuses a FIFO or a device or an oversized file at once") {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "xshell-obj-kinds";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const ScratchDirectory scratch("obj-kinds");
+  const fs::path& dir = scratch.path();
   REQUIRE(::mkfifo((dir / "fifo.obj").c_str(), 0600) == 0);
   auto reading = std::async(std::launch::async, [&]() -> std::string {
     try {
@@ -322,7 +323,6 @@ TEST_CASE("obj: read_obj refuses a FIFO or a device or an oversized file at once
     CHECK(std::string(e.what()).size() < 300);
     CHECK(contains(e.what(), "/grid.obj': File name too long"));
   }
-  fs::remove_all(dir);
 }
 
 // ---------------------------------------------------------------------------

@@ -5,6 +5,7 @@
 
 #include "io/input_error.hpp"
 #include "io/obj_reader.hpp"
+#include "scratch_directory.hpp"
 
 namespace xshell::test::obj_surface_test {
 namespace {
@@ -49,8 +50,8 @@ TEST_CASE("A surface file that is not a triangle mesh is refused with its line")
 }
 
 TEST_CASE("A surface file is read from disk, and a missing one named") {
-  const std::filesystem::path path =
-      std::filesystem::temp_directory_path() / "xshell_obj_surface_test.obj";
+  const ScratchDirectory dir("obj-surface");
+  const std::filesystem::path path = dir / "surface.obj";
   std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   CHECK(read_obj_surface(path.string()).triangles.size() == 1);
   std::filesystem::remove(path);

@@ -9,11 +9,11 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <random>
 #include <sstream>
 
 #include "io/input_error.hpp"
 #include "io/obj_reader.hpp"
+#include "scratch_directory.hpp"
 
 namespace xshell::test {
 namespace {
@@ -40,13 +40,10 @@ json written_state(JointKind kind = JointKind::Rotation) {
   Eigen::VectorXd q = linkage.dofs();
   for (int i = 0; i < q.size(); ++i) q[i] += 1e-3 * std::sin(1.0 + i);
   linkage.set_dofs(q);
-  std::random_device rd;
-  const fs::path path = fs::temp_directory_path() / ("xshell-state-" + std::to_string(rd()));
-  write_state(path.string(), linkage, kOrigin);
-  std::ifstream in(path);
-  const json doc = json::parse(in);
-  fs::remove(path);
-  return doc;
+  const ScratchDirectory dir("state");
+  write_state((dir / "state.json").string(), linkage, kOrigin);
+  std::ifstream in(dir / "state.json");
+  return json::parse(in);
 }
 
 // The message of the InputError that restoring `doc` raises ("" and a
@@ -76,12 +73,10 @@ TEST_CASE("state file: a written state restores the linkage exactly") {
     const json doc = written_state(kind);
     RodLinkage restored = cross_linkage(kind);
     restore_state(doc.dump(), "s.json", restored, kOrigin);
-    std::random_device rd;
-    const fs::path path = fs::temp_directory_path() / ("xshell-state-" + std::to_string(rd()));
-    write_state(path.string(), restored, kOrigin);
-    std::ifstream in(path);
+    const ScratchDirectory dir("state-again");
+    write_state((dir / "state.json").string(), restored, kOrigin);
+    std::ifstream in(dir / "state.json");
     CHECK(json::parse(in) == doc);
-    fs::remove(path);
     ++checked;
   }
   CHECK(checked == 2);
@@ -160,16 +155,14 @@ TEST_CASE("state file: values of the wrong type are refused with their path") {
 }
 
 TEST_CASE("state file: a FIFO or a folder is refused without blocking") {
-  std::random_device rd;
-  const fs::path dir = fs::temp_directory_path() / ("xshell-state-kinds-" + std::to_string(rd()));
-  fs::create_directories(dir);
+  const ScratchDirectory scratch("state-kinds");
+  const fs::path& dir = scratch.path();
   REQUIRE(::mkfifo((dir / "fifo.json").c_str(), 0600) == 0);
   RodLinkage linkage = cross_linkage();
   CHECK_THROWS_WITH_AS(read_state((dir / "fifo.json").string(), linkage, kOrigin),
                        doctest::Contains("cannot read the state file: it is a FIFO"), InputError);
   CHECK_THROWS_WITH_AS(read_state(dir.string(), linkage, kOrigin),
                        doctest::Contains("cannot read the state file: it is a folder"), InputError);
-  fs::remove_all(dir);
 }
 
 }  // namespace xshell::test

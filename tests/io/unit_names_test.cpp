@@ -10,6 +10,7 @@
 
 #include "io/config.hpp"
 #include "io/input_error.hpp"
+#include "scratch_directory.hpp"
 
 namespace xshell::test {
 
@@ -62,9 +63,8 @@ TEST_CASE("config: the units key is read and written back and checked") {
 
 TEST_CASE("run_unit_names: the units of the configuration in a run's summary.json") {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "xshell_unit_names_test";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const ScratchDirectory scratch("unit-names");
+  const fs::path& dir = scratch.path();
   CHECK(run_unit_names(dir).length.empty());  // no summary
   std::ofstream(dir / "summary.json") << "{not json";
   CHECK(run_unit_names(dir).force.empty());
@@ -72,7 +72,6 @@ TEST_CASE("run_unit_names: the units of the configuration in a run's summary.jso
       << R"({"configuration": {"units": {"length": "mm", "force": "kN"}}})";
   CHECK(run_unit_names(dir).length == "mm");
   CHECK(run_unit_names(dir).force == "kN");
-  fs::remove_all(dir);
 }
 
 }  // namespace xshell::test

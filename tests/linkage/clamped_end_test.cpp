@@ -17,6 +17,7 @@
 #include "linkage/model_error.hpp"
 #include "linkage/reactions.hpp"
 #include "linkage_fixtures.hpp"
+#include "scratch_directory.hpp"
 
 namespace xshell::test {
 
@@ -132,8 +133,8 @@ TEST_CASE("A state file records the clamped ends: a state of another clamp layou
   const LineGraph x = single_x();
   LinkageOptions unclamped = test_options(RestShape::Input, 5), clamped = unclamped;
   clamped.clamped_ends = {1};
-  const std::filesystem::path path =
-      std::filesystem::temp_directory_path() / "xshell_clamped_end_state.json";
+  const ScratchDirectory dir("clamped-end");
+  const std::filesystem::path path = dir / "state.json";
   write_state(path.string(), RodLinkage(x, clamped), Eigen::Vector3d::Zero());
   RodLinkage same(x, clamped), other(x, unclamped);
   CHECK_NOTHROW(read_state(path.string(), same, Eigen::Vector3d::Zero()));
@@ -145,7 +146,6 @@ TEST_CASE("A state file records the clamped ends: a state of another clamp layou
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK(text.find("clamped_ends") == std::string::npos);
   CHECK_THROWS_AS(read_state(path.string(), same, Eigen::Vector3d::Zero()), InputError);
-  std::filesystem::remove(path);
 }
 
 TEST_CASE("The clamp's reaction balances a large tip load and the rod's weight about the vertex") {

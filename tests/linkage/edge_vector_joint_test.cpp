@@ -11,6 +11,7 @@
 #include "linkage/edge_vector_conversion.hpp"
 #include "linkage/model_error.hpp"
 #include "linkage_fixtures.hpp"
+#include "scratch_directory.hpp"
 
 namespace xshell::test::edge_vector_joint_test {
 
@@ -201,11 +202,9 @@ TEST_CASE("States restore across joint kinds, in memory and through state.json")
     options.joint_kind = to;
     RodLinkage memory(grid(3, 4, 0.4), options), file(grid(3, 4, 0.4), options);
     memory.restore(source.state());
-    const std::filesystem::path path =
-        std::filesystem::temp_directory_path() / "xshell_edge_vector_state.json";
-    write_state(path.string(), source, Eigen::Vector3d::Zero());
-    read_state(path.string(), file, Eigen::Vector3d::Zero());
-    std::filesystem::remove(path);
+    const ScratchDirectory dir("edge-vector-state");
+    write_state((dir / "state.json").string(), source, Eigen::Vector3d::Zero());
+    read_state((dir / "state.json").string(), file, Eigen::Vector3d::Zero());
     for (const RodLinkage* restored : {&memory, &file}) {
       CHECK(restored->joint(0).kind() == to);
       CHECK(restored->energy().total() == doctest::Approx(source.energy().total()).epsilon(1e-10));

@@ -10,7 +10,7 @@
 namespace xshell::test {
 
 TEST_CASE("Engineering files: reactions, per-edge stresses, pin forces and modes round-trip") {
-  test::ScratchDir dir("engineering");
+  test::ScratchDirectory dir("engineering");
   StaticsSetup setup;
   setup.gravity = Eigen::Vector3d(0, 0, -9.81);
   setup.supports = {{1, {SupportDof::Orientation}}, {2, {SupportDof::Position}}};

@@ -19,7 +19,7 @@ TEST_CASE(
   RodLinkage linkage(test::grid(3, 4, 0.4), test::test_options(RestShape::Input, 5));
   linkage.set_dofs(linkage.dofs() + test::random_vector(linkage.num_dofs(), rng, 0.02));
   const Eigen::Vector3d origin(1.0, -2.0, 0.5);
-  test::ScratchDir dir("linkage-output");
+  test::ScratchDirectory dir("linkage-output");
   SeriesOptions options;
   options.every = 2;
   int checks = 0;

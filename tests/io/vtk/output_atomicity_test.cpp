@@ -40,7 +40,7 @@ bool can_create_in(const std::filesystem::path& directory) {
 }  // namespace
 
 TEST_CASE("atomicity: a read-only directory throws OutputError and leaves nothing") {
-  ScratchDir dir("readonly");
+  ScratchDirectory dir("readonly");
   const auto locked = dir.path() / "locked";
   std::filesystem::create_directory(locked);
   std::filesystem::permissions(
@@ -60,7 +60,7 @@ TEST_CASE("atomicity: a read-only directory throws OutputError and leaves nothin
 
 TEST_CASE("atomicity: a directory that cannot exist throws OutputError and leaves nothing") {
   // A parent that is a regular file: not writable, whoever runs the test.
-  ScratchDir dir("notadir");
+  ScratchDirectory dir("notadir");
   const auto blocker = dir.path() / "blocker";
   std::ofstream(blocker) << "a file, not a directory\n";
   int checks = 0;
@@ -74,7 +74,7 @@ TEST_CASE("atomicity: a directory that cannot exist throws OutputError and leave
 TEST_CASE("atomicity: a failed rename removes the temporary file") {
   // The target name is taken by a directory: the temporary file is written,
   // then rename(2) fails.
-  ScratchDir dir("rename");
+  ScratchDirectory dir("rename");
   const auto path = dir.path() / "rods.vtp";
   std::filesystem::create_directory(path);
   int checks = 0;
@@ -85,7 +85,7 @@ TEST_CASE("atomicity: a failed rename removes the temporary file") {
 }
 
 TEST_CASE("atomicity: a failed step leaves the series index and directory consistent") {
-  ScratchDir dir("series_fail");
+  ScratchDirectory dir("series_fail");
   VtkSeries series(dir.path());
   REQUIRE(series.write(demo_snapshot(0.0), true));
   // Block the solids file of step 1: rods, frames and joints of that step are
@@ -109,7 +109,7 @@ TEST_CASE("atomicity: a failed step leaves the series index and directory consis
 }
 
 TEST_CASE("atomicity: write_file_atomically replaces content whole") {
-  ScratchDir dir("replace");
+  ScratchDirectory dir("replace");
   const auto path = dir.path() / "a.txt";
   write_file_atomically(path, "first version, longer than the second\n");
   write_file_atomically(path, "second\n");

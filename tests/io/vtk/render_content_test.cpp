@@ -61,7 +61,7 @@ long red_pixels(const Pixels& p) {
 
 TEST_CASE("render: the colour bar spans blue to red under the drawing (needs a display)") {
   require_display();
-  ScratchDir dir("render_bar");
+  ScratchDirectory dir("render_bar");
   const fs::path rods = dir.path() / "rods_000000.vtp";
   write_rods_file(grid_snapshot(5, 0.2), rods);
   const Pixels colored = render({rods}, dir.path() / "bar.png", sized(400, 300, "bending_density"));
@@ -96,7 +96,7 @@ TEST_CASE("render: the colour bar spans blue to red under the drawing (needs a d
 TEST_CASE(
     "render: a flat and a deployed linkage fill the picture from every view (needs a display)") {
   require_display();
-  ScratchDir dir("render_views");
+  ScratchDirectory dir("render_views");
   int checked = 0;
   for (double height : {0.0, 0.25}) {
     const fs::path rods = dir.path() / "rods_000000.vtp";
@@ -121,7 +121,7 @@ TEST_CASE(
     "render: --scale-deflection draws the displacement from the first step K times (needs a "
     "display)") {
   require_display();
-  ScratchDir dir("render_deflection");
+  ScratchDirectory dir("render_deflection");
   const fs::path start = dir.path() / "rods_000000.vtp", last = dir.path() / "rods_000004.vtp";
   write_rods_file(grid_snapshot(5, 0.0), start);
   write_rods_file(grid_snapshot(5, -0.004), last);  // a 4 mm sag of a 1 m grid
@@ -142,7 +142,7 @@ TEST_CASE(
 }
 
 TEST_CASE("render: --scale-deflection without reference geometry is an InputError") {
-  ScratchDir dir("render_no_reference");
+  ScratchDirectory dir("render_no_reference");
   fs::create_directory(dir.path() / "lone");
   const fs::path lone = dir.path() / "lone" / "rods_000004.vtp";
   const fs::path other = dir.path() / "other.vtp";
@@ -167,7 +167,7 @@ TEST_CASE("render: --scale-deflection without reference geometry is an InputErro
 
 TEST_CASE("render: joints alone as spheres and reactions as arrows (needs a display)") {
   require_display();
-  ScratchDir dir("render_glyphs");
+  ScratchDirectory dir("render_glyphs");
   const Snapshot grid = grid_snapshot(5, 0.2);
   const fs::path joints = dir.path() / "joints_000003.vtp", rods = dir.path() / "rods_000003.vtp";
   const fs::path reactions = dir.path() / "reactions.vtp";
@@ -190,7 +190,7 @@ TEST_CASE("render: joints alone as spheres and reactions as arrows (needs a disp
 }
 
 TEST_CASE("render: the colour bar's title names the array's unit from the run's units") {
-  ScratchDir dir("render_units");
+  ScratchDirectory dir("render_units");
   write_rods_file(grid_snapshot(3, 0.1), dir.path() / "rods_000001.vtp");
   EngineeringSnapshot stresses;
   EdgeResult edge;

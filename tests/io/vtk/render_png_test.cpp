@@ -60,7 +60,7 @@ Picture read_png(const std::filesystem::path& path) {
 }
 
 // The demo snapshot's rods and solids files in `dir`.
-std::pair<std::string, std::string> demo_files(const ScratchDir& dir) {
+std::pair<std::string, std::string> demo_files(const ScratchDirectory& dir) {
   const Snapshot snapshot = demo_snapshot(0.0, 0.4);
   const auto rods = dir.path() / "rods.vtp", solids = dir.path() / "solids.vtp";
   write_rods_file(snapshot, rods);
@@ -71,7 +71,7 @@ std::pair<std::string, std::string> demo_files(const ScratchDir& dir) {
 }  // namespace
 
 TEST_CASE("render: no display, or an unreachable one, is a RenderError, not a crash") {
-  ScratchDir dir("render_nodisplay");
+  ScratchDirectory dir("render_nodisplay");
   const auto [rods, solids] = demo_files(dir);
   const auto png = dir.path() / "picture.png";
   int checks = 0;
@@ -96,7 +96,7 @@ TEST_CASE("render: no display, or an unreachable one, is a RenderError, not a cr
 TEST_CASE("render: solids and tubes to a non-trivial PNG (needs a display)") {
   if (!display_variable_set())
     XSHELL_SKIP("DISPLAY is not set: no picture (run under `xvfb-run -a` to check it)");
-  ScratchDir dir("render");
+  ScratchDirectory dir("render");
   const auto [rods, solids] = demo_files(dir);
   int checks = 0;
 
@@ -126,7 +126,7 @@ TEST_CASE("render: solids and tubes to a non-trivial PNG (needs a display)") {
 }
 
 TEST_CASE("render: bad input is an InputError with or without a display and draws nothing") {
-  ScratchDir dir("render_bad");
+  ScratchDirectory dir("render_bad");
   const auto [rods, solids] = demo_files(dir);
   const std::string png = (dir.path() / "p.png").string();
   const std::string text = [&] {
@@ -178,7 +178,7 @@ TEST_CASE("render: bad input is an InputError with or without a display and draw
 
 TEST_CASE("render: the largest picture side is drawn (needs a display)") {
   if (!display_variable_set()) XSHELL_SKIP("DISPLAY is not set: no picture");
-  ScratchDir dir("render_large");
+  ScratchDirectory dir("render_large");
   const auto [rods, solids] = demo_files(dir);
   const auto png = dir.path() / "wide.png";
   render_png({solids}, png.string(), sized(kMaxPictureSide, 16, ""));

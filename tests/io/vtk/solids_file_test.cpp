@@ -77,7 +77,7 @@ double signed_volume(vtkPolyData& data) {
 TEST_CASE("solids file: closed oriented surfaces, one triangle set per rod") {
   const Snapshot snapshot = demo_snapshot(0.0, 0.3);
   for (VtkFormat format : {VtkFormat::Binary, VtkFormat::Ascii}) {
-    ScratchDir dir("solids");
+    ScratchDirectory dir("solids");
     const auto path = dir.path() / "solids.vtp";
     write_solids_file(snapshot, path, {format}, {});
     const auto data = read_polydata(path);
@@ -125,7 +125,7 @@ TEST_CASE("solids file: a straight rod is an exact prism with outward normals") 
   int checked_cases = 0;
   for (const Case& c : cases) {
     CAPTURE(static_cast<int>(c.section.shape));
-    ScratchDir dir("prism");
+    ScratchDirectory dir("prism");
     const auto path = dir.path() / "solids.vtp";
     write_solids_file(straight_rod_snapshot(c.section, start, end, 5), path, {}, {sides, 60.0});
     const auto data = read_polydata(path);
@@ -170,7 +170,7 @@ double largest_normal_deviation(vtkPolyData& data) {
 // The solids file of a straight rod of 5 edges with `section` (12-gon
 // ellipses, crease angle 60 degrees), read back.
 vtkSmartPointer<vtkPolyData> straight_solid(const SectionSnapshot& section) {
-  ScratchDir dir("straight_solid");
+  ScratchDirectory dir("straight_solid");
   const auto path = dir.path() / "solids.vtp";
   write_solids_file(straight_rod_snapshot(section, {0.2, -0.1, 0.4}, {1.1, 0.5, 0.1}, 5), path, {},
                     {12, 60.0});
@@ -198,7 +198,7 @@ TEST_CASE("solids file: flat faces shade flat and smooth sections smoothly") {
 }
 
 TEST_CASE("solids file: a section without width is rejected") {
-  ScratchDir dir("bad_section");
+  ScratchDirectory dir("bad_section");
   Snapshot snapshot = demo_snapshot();
   snapshot.rods[1].section.width = 0.0;
   CHECK_THROWS_AS(write_solids_file(snapshot, dir.path() / "solids.vtp"), std::invalid_argument);

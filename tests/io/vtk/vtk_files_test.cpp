@@ -56,7 +56,7 @@ TEST_CASE("rods file: one polyline per rod with per-node data") {
   const Snapshot snapshot = demo_snapshot(1.5);
   for (const Format& format : kFormats) {
     CAPTURE(format.name);
-    ScratchDir dir("rods");
+    ScratchDirectory dir("rods");
     const auto path = dir.path() / "rods.vtp";
     write_rods_file(snapshot, path, format.options);
     int checks = 0;
@@ -110,7 +110,7 @@ TEST_CASE("frames file: unit orthogonal material frames at edge midpoints") {
   const Snapshot snapshot = demo_snapshot(0.25);
   for (const Format& format : kFormats) {
     CAPTURE(format.name);
-    ScratchDir dir("frames");
+    ScratchDirectory dir("frames");
     const auto path = dir.path() / "frames.vtp";
     write_frames_file(snapshot, path, format.options);
     int checks = 0;
@@ -168,7 +168,7 @@ TEST_CASE("joints file: one vertex per joint with the snapshot's normals") {
   REQUIRE(snapshot.joints.size() == 5);
   for (const Format& format : kFormats) {
     CAPTURE(format.name);
-    ScratchDir dir("joints");
+    ScratchDirectory dir("joints");
     const auto path = dir.path() / "joints.vtp";
     write_joints_file(snapshot, path, format.options);
     int checks = 0;
@@ -201,7 +201,7 @@ TEST_CASE("joints file: one vertex per joint with the snapshot's normals") {
 }
 
 TEST_CASE("an empty snapshot gives valid empty files") {
-  ScratchDir dir("empty");
+  ScratchDirectory dir("empty");
   const Snapshot empty;
   write_rods_file(empty, dir.path() / "rods.vtp");
   write_frames_file(empty, dir.path() / "frames.vtp");
@@ -215,7 +215,7 @@ TEST_CASE("an empty snapshot gives valid empty files") {
 }
 
 TEST_CASE("an inconsistent snapshot is rejected before anything is written") {
-  ScratchDir dir("invalid");
+  ScratchDirectory dir("invalid");
   Snapshot snapshot = demo_snapshot();
   snapshot.rods[1].d2.pop_back();
   CHECK_THROWS_AS(write_rods_file(snapshot, dir.path() / "rods.vtp"), std::invalid_argument);

@@ -60,7 +60,7 @@ bool has_temporary_file(const std::filesystem::path& directory) {
 }  // namespace
 
 TEST_CASE("series: every=2 plus forced first and final writes") {
-  ScratchDir dir("series");
+  ScratchDirectory dir("series");
   const auto out = dir.path() / "run";  // created by the series
   std::vector<double> written_times;
   {
@@ -110,7 +110,7 @@ TEST_CASE("series: every=2 plus forced first and final writes") {
 }
 
 TEST_CASE("series: without solids, three files per step, and every=1 writes every call") {
-  ScratchDir dir("series_nosolids");
+  ScratchDirectory dir("series_nosolids");
   VtkSeries series(dir.path(), {1, VtkFormat::Ascii, false, {}});
   int checks = 0;
   for (int call = 0; call < 3; ++call)
@@ -125,7 +125,7 @@ TEST_CASE("series: without solids, three files per step, and every=1 writes ever
 }
 
 TEST_CASE("series: misuse is rejected") {
-  ScratchDir dir("series_misuse");
+  ScratchDirectory dir("series_misuse");
   CHECK_THROWS_AS(VtkSeries(dir.path(), {0, VtkFormat::Binary, true, {}}), std::invalid_argument);
   VtkSeries series(dir.path());
   series.close();
@@ -135,7 +135,7 @@ TEST_CASE("series: misuse is rejected") {
 }
 
 TEST_CASE("series: at max_steps every other step goes and the cadence halves") {
-  ScratchDir dir("series-thin");
+  ScratchDirectory dir("series-thin");
   SeriesOptions options;
   options.max_steps = 4;
   options.solids = false;

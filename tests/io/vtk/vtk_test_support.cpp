@@ -1,36 +1,13 @@
 #include "vtk_test_support.hpp"
 
 #include <doctest/doctest.h>
-#include <unistd.h>
 #include <vtkErrorCode.h>
 #include <vtkNew.h>
 #include <vtkXMLPolyDataReader.h>
 
-#include <atomic>
 #include <fstream>
-#include <system_error>
 
 namespace xshell::test {
-
-ScratchDir::ScratchDir(const std::string& tag) {
-  static std::atomic<int> counter{0};
-  path_ =
-      std::filesystem::temp_directory_path() /
-      ("xshell_vtk_" + tag + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  std::filesystem::remove_all(path_);
-  std::filesystem::create_directories(path_);
-}
-
-ScratchDir::~ScratchDir() {
-  std::error_code ignored;
-  // Give back write permission first: some tests make subdirectories read-only.
-  for (auto it = std::filesystem::recursive_directory_iterator(path_, ignored);
-       it != std::filesystem::recursive_directory_iterator(); it.increment(ignored))
-    if (it->is_directory(ignored))
-      std::filesystem::permissions(it->path(), std::filesystem::perms::owner_all,
-                                   std::filesystem::perm_options::add, ignored);
-  std::filesystem::remove_all(path_, ignored);
-}
 
 vtkSmartPointer<vtkPolyData> read_polydata(const std::filesystem::path& path) {
   REQUIRE_MESSAGE(std::filesystem::is_regular_file(path), path.string());

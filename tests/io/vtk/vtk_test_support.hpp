@@ -1,5 +1,5 @@
-// Helpers of the VTK writer tests: a scratch directory that cleans up after
-// itself, reading a .vtp back, reading tuples.
+// Helpers of the VTK writer tests: reading a .vtp back, reading tuples (and
+// the scratch directory they write in).
 #pragma once
 
 #include <doctest/doctest.h>
@@ -12,6 +12,8 @@
 #include <set>
 #include <string>
 
+#include "scratch_directory.hpp"
+
 // CHECK(expr) and count it, so that a test can assert at its end how many
 // checks ran and cannot pass by checking nothing.
 #define XSHELL_COUNTED_CHECK(counter, ...) \
@@ -21,20 +23,6 @@
   } while (false)
 
 namespace xshell::test {
-
-// A fresh empty directory under the system's temporary directory, removed
-// with its content on destruction.
-class ScratchDir {
- public:
-  explicit ScratchDir(const std::string& tag);
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  ~ScratchDir();
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
 
 // Reads `path` with vtkXMLPolyDataReader; fails the current test case
 // (REQUIRE) when the file cannot be read.
