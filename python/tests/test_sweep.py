@@ -18,7 +18,7 @@ def load_example():
     return module
 
 
-def test_sweep_on_a_local_cluster_equals_serial_runs():
+def test_sweep_on_a_local_cluster_equals_serial_runs(tmp_path):
     sweep = load_example()
     runs = sweep.configurations(
         sweep.base_configuration(), young_moduli=[2.0e10], heights=[0.006, 0.008],
@@ -27,7 +27,8 @@ def test_sweep_on_a_local_cluster_equals_serial_runs():
     assert len(runs) == 4
     serial = [sweep.solve(p, cfg) for p, cfg in runs]
     with distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None,
+        local_directory=str(tmp_path),
     ) as cluster, distributed.Client(cluster) as client:
         parallel = sweep.run_sweep(client, runs)
         # Both workers ran some of the runs.
