@@ -28,9 +28,12 @@ class LinkageObjective : public Objective {
   Eigen::VectorXd gradient_weights() const override { return problem_.gradient_weights(); }
   Eigen::VectorXd mass() const override { return problem_.free_mass(); }
   void rebase(Eigen::VectorXd* velocity) override { problem_.rebase(velocity); }
-  bool begin_path(const Eigen::VectorXd& p) override {
+  // The joints follow their turned chords on unshifted Newton steps only:
+  // on shifted ones they led the iterates into indefinite regions
+  // (docs/model.md section 9.8).
+  bool begin_path(const Eigen::VectorXd& p, bool newton_step) override {
     if (!path_) path_.emplace(problem_);
-    path_->start(problem_, p);
+    path_->start(problem_, p, newton_step);
     return true;
   }
   Eigen::VectorXd path_point(double alpha) override { return path_->point(problem_, alpha); }

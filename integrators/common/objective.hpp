@@ -58,9 +58,11 @@ class Objective {
   // (the rod linkage turns its edges, docs/model.md section 9.8).
   // begin_path(p) at q0 returns whether there is one; path_point(alpha)
   // then gives its unknowns at alpha, and may move the model (throwing
-  // std::domain_error like set()).
-  virtual bool begin_path(const Eigen::VectorXd& p) {
+  // std::domain_error like set()). newton_step: p solves the Newton system
+  // of the unshifted Hessian (the curve may then follow it further).
+  virtual bool begin_path(const Eigen::VectorXd& p, bool newton_step) {
     (void)p;
+    (void)newton_step;
     return false;
   }
   virtual Eigen::VectorXd path_point(double alpha);

@@ -25,15 +25,15 @@ DescentStepResult energy_descent_step(ObjectiveEvaluator& evaluator, CholeskySol
     return g.allFinite() &&
            (w.array() * g.array()).matrix().norm() < (w.array() * g0.array()).matrix().norm();
   };
-  if (options.follow_path) energy.path = objective_path(evaluator, q0, p);
+  if (options.follow_path) energy.path = objective_path(evaluator, q0, p, options.newton_step);
   return backtrack_on_energy(evaluator, q0, e0, p, energy, options);
 }
 
 std::function<Eigen::VectorXd(double)> objective_path(ObjectiveEvaluator& evaluator,
                                                       const Eigen::VectorXd& q0,
-                                                      const Eigen::VectorXd& p) {
+                                                      const Eigen::VectorXd& p, bool newton_step) {
   evaluator.move_to(q0);
-  if (!evaluator.objective().begin_path(p)) return {};
+  if (!evaluator.objective().begin_path(p, newton_step)) return {};
   return [&evaluator](double alpha) {
     Eigen::VectorXd q = evaluator.objective().path_point(alpha);
     evaluator.sync();  // path_point moved the objective

@@ -41,6 +41,9 @@ struct DescentStepOptions {
   // energy_descent_step: backtrack along the objective's curve when it has
   // one (Objective::begin_path), not along the line.
   bool follow_path = true;
+  // The factorization is of the unshifted Hessian: the step is Newton's
+  // (Objective::begin_path's newton_step).
+  bool newton_step = false;
   // On a path, a full step that was accepted is doubled while the merit
   // keeps falling (with the Armijo test), up to this multiple: Newton's
   // quadratic model measures curvature along the line, which a curved
@@ -87,7 +90,7 @@ struct BacktrackingMerit {
 // objective to q0.
 std::function<Eigen::VectorXd(double)> objective_path(ObjectiveEvaluator& evaluator,
                                                       const Eigen::VectorXd& q0,
-                                                      const Eigen::VectorXd& p);
+                                                      const Eigen::VectorXd& p, bool newton_step);
 
 // The one Armijo backtracking of the energy line searches (this step's and
 // the constrained Newton's, constrained_newton.hpp): from q0 (the objective

@@ -263,6 +263,7 @@ bool NewtonSolver::Impl::energy_step(const Eigen::VectorXd& q0, NewtonRun& run, 
   DescentStepOptions descent;
   descent.max_step = options.max_step;
   descent.follow_path = options.follow_path;
+  descent.newton_step = !system.last_factorization().shifted;
   const DescentStepResult step =
       energy_descent_step(evaluator, system.cholesky(), q0, run.report.energy, g0, descent);
   rethrow_if_fatal(q0);

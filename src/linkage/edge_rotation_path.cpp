@@ -1,25 +1,12 @@
 #include "edge_rotation_path.hpp"
 
-#include <cmath>
+#include <array>
+
+#include "turned_edge.hpp"
 
 namespace xshell {
 
 namespace {
-
-// Edge e moved by de, turned rather than stretched (edge_rotation_path.hpp).
-Eigen::Vector3d turned_edge(const Eigen::Vector3d& e, const Eigen::Vector3d& de) {
-  const double length = e.norm();
-  if (!(length > 0.0)) return e + de;
-  const Eigen::Vector3d t = e / length;
-  const double along = t.dot(de);
-  const Eigen::Vector3d across = de - along * t;
-  const double new_length = length + along;
-  const double across_norm = across.norm();
-  // A step that shortens the edge to nothing or beyond: nothing to turn.
-  if (!(new_length > 0.0) || !(across_norm > 0.0)) return e + de;
-  const double angle = across_norm / length;
-  return new_length * (std::cos(angle) * t + std::sin(angle) * (across / across_norm));
-}
 
 // Spreads the gap left at the end of a run (its nodes first..last, placed
 // by summing edges from node first - 1) along it in proportion to arc length.
@@ -39,7 +26,7 @@ void close_gap(int first, int last, const Eigen::Vector3d& gap, std::vector<Eige
 
 }  // namespace
 
-EdgeRotationPath::EdgeRotationPath(const LinkageProblem& problem) {
+EdgeRotationPath::EdgeRotationPath(const LinkageProblem& problem) : joints_(problem) {
   const RodLinkage& linkage = problem.linkage();
   std::vector<int> free_of(linkage.num_dofs(), -1);
   const std::vector<int>& free = problem.free_indices();
@@ -59,20 +46,32 @@ EdgeRotationPath::EdgeRotationPath(const LinkageProblem& problem) {
   }
 }
 
-void EdgeRotationPath::start(const LinkageProblem& problem, const Eigen::VectorXd& p) {
+void EdgeRotationPath::start(const LinkageProblem& problem, const Eigen::VectorXd& p,
+                             bool place_joints) {
   q0_ = problem.free_dofs();
   p_ = p;
+  place_joints_ = place_joints && joints_.active();
   const RodLinkage& linkage = problem.linkage();
   start_nodes_.resize(linkage.num_segments());
   for (int s = 0; s < linkage.num_segments(); ++s) start_nodes_[s] = linkage.segment(s).nodes();
+  if (place_joints_) joints_.start(problem);
 }
 
 Eigen::VectorXd EdgeRotationPath::point(LinkageProblem& problem, double alpha) const {
   Eigen::VectorXd q = q0_ + alpha * p_;
+  std::vector<Eigen::Vector3d> shifts;
+  // Beyond the full step (the expansion) the joints take the straight step.
+  if (place_joints_ && alpha <= 1.0) shifts = joints_.place(q);
   problem.set_free_dofs(q);
   std::vector<Eigen::Vector3d> nodes;
+  const LinkageTopology& topology = problem.linkage().topology();
   for (int s = 0; s < problem.linkage().num_segments(); ++s) {
-    turn_segment(s, problem.linkage().segment(s).nodes(), nodes);
+    std::array<Eigen::Vector3d, 2> shift{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    if (!shifts.empty())
+      for (int side = 0; side < 2; ++side)
+        if (topology.segments[s].joint[side] >= 0)
+          shift[side] = shifts[topology.segments[s].joint[side]];
+    turn_segment(s, problem.linkage().segment(s).nodes(), shift, nodes);
     for (int i = 0; i < static_cast<int>(nodes.size()); ++i) {
       const Eigen::Vector3i& unknowns = node_unknowns_[s][i];
       if (unknowns[0] >= 0)
@@ -82,17 +81,26 @@ Eigen::VectorXd EdgeRotationPath::point(LinkageProblem& problem, double alpha) c
   return q;
 }
 
-void EdgeRotationPath::turn_segment(int s, const std::vector<Eigen::Vector3d>& straight,
+void EdgeRotationPath::turn_segment(int s, const std::vector<Eigen::Vector3d>& placed,
+                                    const std::array<Eigen::Vector3d, 2>& joint_shift,
                                     std::vector<Eigen::Vector3d>& nodes) const {
   const std::vector<Eigen::Vector3d>& start = start_nodes_[s];
   const std::vector<Eigen::Vector3i>& unknowns = node_unknowns_[s];
-  const int n = static_cast<int>(straight.size());
-  nodes = straight;
+  const int n = static_cast<int>(placed.size());
+  nodes = placed;
   auto is_free = [&](int i) { return unknowns[i][0] >= 0; };
+  // Where the straight step puts node i: a joint's terminal nodes (the
+  // first two, the last two) are placed with their joint, shifted.
+  auto straight = [&](int i) -> Eigen::Vector3d {
+    if (is_free(i)) return placed[i];
+    if (i <= 1) return placed[i] - joint_shift[0];
+    if (i >= n - 2) return placed[i] - joint_shift[1];
+    return placed[i];
+  };
   // Edge i -> i + 1 after the step.
   auto edge = [&](int i) {
     return turned_edge(start[i + 1] - start[i],
-                       (straight[i + 1] - straight[i]) - (start[i + 1] - start[i]));
+                       (straight(i + 1) - straight(i)) - (start[i + 1] - start[i]));
   };
   for (int a = 0; a < n; ++a) {
     if (!is_free(a)) continue;
@@ -107,7 +115,7 @@ void EdgeRotationPath::turn_segment(int s, const std::vector<Eigen::Vector3d>& s
       const int first = left ? a : a + 1;
       for (int i = first; i <= b; ++i) nodes[i] = nodes[i - 1] + edge(i - 1);
       if (right && first <= b)
-        close_gap(first, b, straight[b + 1] - (nodes[b] + edge(b)), nodes, straight[b + 1]);
+        close_gap(first, b, placed[b + 1] - (nodes[b] + edge(b)), nodes, placed[b + 1]);
     }
     a = b;
   }

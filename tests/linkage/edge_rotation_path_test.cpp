@@ -1,6 +1,7 @@
 // The edge-turning path of the Newton line searches (edge_rotation_path.hpp,
 // docs/model.md section 9.8): it leaves q0 with tangent p, moves only free
-// node positions, and turns a run of edges rigidly without stretching it.
+// node and joint positions, and turns a run of edges rigidly without
+// stretching it.
 #include "linkage/edge_rotation_path.hpp"
 
 #include <doctest/doctest.h>
@@ -24,8 +25,9 @@ Eigen::VectorXd random_vector(Eigen::Index n, double scale, unsigned seed) {
   return v;
 }
 
-// Per free unknown: true when it is a coordinate of a segment's node.
-std::vector<bool> node_coordinates(const LinkageProblem& problem) {
+// Per free unknown: true when it is a coordinate of a segment's node or of
+// a joint's position.
+std::vector<bool> position_coordinates(const LinkageProblem& problem) {
   const RodLinkage& linkage = problem.linkage();
   std::vector<bool> is_node(linkage.num_dofs(), false);
   for (int s = 0; s < linkage.num_segments(); ++s)
@@ -33,20 +35,42 @@ std::vector<bool> node_coordinates(const LinkageProblem& problem) {
       const int r = linkage.reduced_index(s, k);
       if (r >= 0) is_node[r] = true;
     }
+  for (int j = 0; j < linkage.num_joints(); ++j)
+    for (int c = 0; c < 3; ++c) is_node[linkage.joint_dof_offset(j) + c] = true;
   std::vector<bool> free_is_node;
   for (int r : problem.free_indices()) free_is_node.push_back(is_node[r]);
   return free_is_node;
 }
 
+// The free unknowns of the joints' positions.
+std::vector<int> joint_positions(const LinkageProblem& problem) {
+  std::vector<int> out;
+  for (int j = 0; j < problem.linkage().num_joints(); ++j)
+    for (int c = 0; c < 3; ++c) {
+      const int k = problem.free_position(problem.linkage().joint_dof_offset(j) + c);
+      if (k >= 0) out.push_back(k);
+    }
+  return out;
+}
+
+// The largest deviation of the joints' positions from the straight step.
+double joint_deviation(LinkageProblem& problem, const EdgeRotationPath& path,
+                       const Eigen::VectorXd& q0, const Eigen::VectorXd& p, double alpha) {
+  const Eigen::VectorXd deviation = path.point(problem, alpha) - (q0 + alpha * p);
+  double largest = 0.0;
+  for (int k : joint_positions(problem)) largest = std::max(largest, std::abs(deviation[k]));
+  return largest;
+}
+
 }  // namespace
 
-TEST_CASE("The edge-turning path leaves q0 with tangent p and moves only node positions") {
+TEST_CASE("The edge-turning path leaves q0 with tangent p and moves only positions") {
   LinkageProblem problem(RodLinkage(grid(3, 3, 0.3), test_options(RestShape::Input, 6)), {});
   const Eigen::VectorXd q0 = problem.free_dofs();
   const Eigen::VectorXd p = random_vector(q0.size(), 0.05, 7);
   EdgeRotationPath path(problem);
-  path.start(problem, p);
-  const std::vector<bool> is_node = node_coordinates(problem);
+  path.start(problem, p, true);
+  const std::vector<bool> is_node = position_coordinates(problem);
 
   CHECK((path.point(problem, 0.0) - q0).lpNorm<Eigen::Infinity>() < 1e-14);
   double previous = 0.0;
@@ -57,7 +81,7 @@ TEST_CASE("The edge-turning path leaves q0 with tangent p and moves only node po
     double off_nodes = 0.0;
     for (Eigen::Index i = 0; i < q0.size(); ++i)
       if (!is_node[i]) off_nodes = std::max(off_nodes, std::abs(deviation[i]));
-    CHECK(off_nodes == 0.0);  // joints and thetas take the straight step
+    CHECK(off_nodes == 0.0);  // joint rotations and angles, thetas: the straight step
     const double d = deviation.lpNorm<Eigen::Infinity>();
     CHECK(d > 1e-8);  // the path is curved
     if (previous > 0.0) {
@@ -68,8 +92,26 @@ TEST_CASE("The edge-turning path leaves q0 with tangent p and moves only node po
     previous = d;
   }
   CHECK(halvings == 3);
-  // The path moved the problem to the straight step (not to the point).
-  CHECK((problem.free_dofs() - (q0 + 0.05 * p)).lpNorm<Eigen::Infinity>() < 1e-14);
+  // The path moved the problem to the straight step with the joints placed
+  // (not to the point): the nodes differ, nothing else.
+  const Eigen::VectorXd placed = problem.free_dofs() - (q0 + 0.05 * p);
+  for (Eigen::Index i = 0; i < q0.size(); ++i)
+    if (!is_node[i]) CHECK(placed[i] == 0.0);
+}
+
+TEST_CASE("The joints turn only on a Newton step and only up to the full step") {
+  LinkageProblem problem(RodLinkage(grid(3, 3, 0.3), test_options(RestShape::Input, 6)), {});
+  const Eigen::VectorXd q0 = problem.free_dofs();
+  const Eigen::VectorXd p = random_vector(q0.size(), 0.05, 11);
+  REQUIRE(joint_positions(problem).size() >= 6);
+  EdgeRotationPath path(problem);
+  path.start(problem, p, true);
+  CHECK(joint_deviation(problem, path, q0, p, 0.5) > 1e-8);
+  CHECK(joint_deviation(problem, path, q0, p, 1.0) > 1e-8);
+  CHECK(joint_deviation(problem, path, q0, p, 2.0) == 0.0);
+  problem.set_free_dofs(q0);
+  path.start(problem, p, false);
+  CHECK(joint_deviation(problem, path, q0, p, 0.5) == 0.0);
 }
 
 TEST_CASE("Along the edge-turning path a cantilever's free part turns rigidly, unstretched") {
