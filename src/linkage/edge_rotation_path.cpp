@@ -28,9 +28,6 @@ void close_gap(int first, int last, const Eigen::Vector3d& gap, std::vector<Eige
 
 EdgeRotationPath::EdgeRotationPath(const LinkageProblem& problem) : joints_(problem) {
   const RodLinkage& linkage = problem.linkage();
-  std::vector<int> free_of(linkage.num_dofs(), -1);
-  const std::vector<int>& free = problem.free_indices();
-  for (int k = 0; k < static_cast<int>(free.size()); ++k) free_of[free[k]] = k;
   node_unknowns_.resize(linkage.num_segments());
   for (int s = 0; s < linkage.num_segments(); ++s) {
     const int nodes = linkage.segment(s).num_nodes();
@@ -39,7 +36,7 @@ EdgeRotationPath::EdgeRotationPath(const LinkageProblem& problem) : joints_(prob
       Eigen::Vector3i unknowns;
       for (int c = 0; c < 3; ++c) {
         const int reduced = linkage.reduced_index(s, 3 * i + c);
-        unknowns[c] = reduced >= 0 ? free_of[reduced] : -1;
+        unknowns[c] = reduced >= 0 ? problem.free_position(reduced) : -1;
       }
       if ((unknowns.array() >= 0).all()) node_unknowns_[s][i] = unknowns;
     }

@@ -6,28 +6,16 @@
 
 namespace xshell {
 
-namespace {
-
-// Per reduced unknown, its free index or -1.
-std::vector<int> free_index_of(const LinkageProblem& problem) {
-  std::vector<int> free_of(problem.linkage().num_dofs(), -1);
-  const std::vector<int>& free = problem.free_indices();
-  for (int k = 0; k < static_cast<int>(free.size()); ++k) free_of[free[k]] = k;
-  return free_of;
-}
-
-}  // namespace
-
 JointChordPlacement::JointChordPlacement(const LinkageProblem& problem) {
   const RodLinkage& linkage = problem.linkage();
   const LinkageTopology& topology = linkage.topology();
-  const std::vector<int> free_of = free_index_of(problem);
   // Points: every joint, then the free ends that the supports hold.
   std::vector<int> point_of_vertex(topology.valence.size(), -1);
   num_joints_ = linkage.num_joints();
   for (int j = 0; j < linkage.num_joints(); ++j) {
     Point point;
-    for (int c = 0; c < 3; ++c) point.unknowns[c] = free_of[linkage.joint_dof_offset(j) + c];
+    for (int c = 0; c < 3; ++c)
+      point.unknowns[c] = problem.free_position(linkage.joint_dof_offset(j) + c);
     if ((point.unknowns.array() >= 0).all()) {
       point.free_joint = static_cast<int>(free_joints_.size());
       free_joints_.push_back(static_cast<int>(points_.size()));
@@ -42,7 +30,7 @@ JointChordPlacement::JointChordPlacement(const LinkageProblem& problem) {
     const RodLinkage::FreeEnd end = linkage.free_end(vertex);
     for (int c = 0; c < 3; ++c) {
       const int r = linkage.reduced_index(s, 3 * end.end_node + c);
-      if (r >= 0 && free_of[r] >= 0) return -1;  // the end moves: no chord
+      if (r >= 0 && problem.free_position(r) >= 0) return -1;  // the end moves: no chord
     }
     Point point;
     point.unknowns.setConstant(-1);
