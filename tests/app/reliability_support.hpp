@@ -98,7 +98,8 @@ inline CommandResult run_xshell_unprivileged(const std::string& args, const fs::
   if (permissions_bind()) return run_xshell(args, dir);
   if (std::system("command -v setpriv >/dev/null 2>&1") != 0)
     return {-2, "root without setpriv(1): no unprivileged run"};
-  if (!reachable_by_others(dir))
+  // The scratch folder itself is private (mkdtemp) and opened below.
+  if (!reachable_by_others(fs::absolute(dir).parent_path()))
     return {-2, "the scratch folder " + dir.string() +
                     " is inside a folder other users cannot enter (TMPDIR?): no unprivileged run"};
   const fs::path copy = dir / "xshell-copy";
