@@ -14,14 +14,14 @@ JointChordPlacement::JointChordPlacement(const LinkageProblem& problem) {
   num_joints_ = linkage.num_joints();
   for (int j = 0; j < linkage.num_joints(); ++j) {
     Point point;
+    point.vertex = topology.joints[j].vertex;
     for (int c = 0; c < 3; ++c)
       point.unknowns[c] = problem.free_position(linkage.joint_dof_offset(j) + c);
     if ((point.unknowns.array() >= 0).all()) {
       point.free_joint = static_cast<int>(free_joints_.size());
       free_joints_.push_back(static_cast<int>(points_.size()));
     }
-    point_of_vertex[topology.joints[j].vertex] = static_cast<int>(points_.size());
-    vertices_.push_back(topology.joints[j].vertex);
+    point_of_vertex[point.vertex] = static_cast<int>(points_.size());
     points_.push_back(point);
   }
   auto end_point = [&](int s, int side) {
@@ -33,9 +33,9 @@ JointChordPlacement::JointChordPlacement(const LinkageProblem& problem) {
       if (r >= 0 && problem.free_position(r) >= 0) return -1;  // the end moves: no chord
     }
     Point point;
+    point.vertex = vertex;
     point.unknowns.setConstant(-1);
     point_of_vertex[vertex] = static_cast<int>(points_.size());
-    vertices_.push_back(vertex);
     points_.push_back(point);
     return point_of_vertex[vertex];
   };
@@ -72,8 +72,7 @@ void JointChordPlacement::factorize_normal_matrix() {
 }
 
 void JointChordPlacement::start(const LinkageProblem& problem) {
-  for (int i = 0; i < static_cast<int>(points_.size()); ++i)
-    points_[i].start = problem.linkage().vertex_position(vertices_[i]);
+  for (Point& point : points_) point.start = problem.linkage().vertex_position(point.vertex);
 }
 
 Eigen::Vector3d JointChordPlacement::straight(const Point& point, const Eigen::VectorXd& q) const {
@@ -86,13 +85,14 @@ Eigen::Vector3d JointChordPlacement::straight(const Point& point, const Eigen::V
 std::vector<Eigen::Vector3d> JointChordPlacement::place(Eigen::VectorXd& q) const {
   std::vector<Eigen::Vector3d> shifts(num_joints_, Eigen::Vector3d::Zero());
   if (!active()) return shifts;
+  std::vector<Eigen::Vector3d> line(points_.size());
+  for (std::size_t i = 0; i < points_.size(); ++i) line[i] = straight(points_[i], q);
   const int n = static_cast<int>(free_joints_.size());
   Eigen::MatrixXd rhs(n, 3);
-  for (int k = 0; k < n; ++k)
-    rhs.row(k) = pull_ * straight(points_[free_joints_[k]], q).transpose();
+  for (int k = 0; k < n; ++k) rhs.row(k) = pull_ * line[free_joints_[k]].transpose();
   for (const Chord& chord : chords_) {
     const Point &from = points_[chord.from], &to = points_[chord.to];
-    const Eigen::Vector3d x_from = straight(from, q), x_to = straight(to, q);
+    const Eigen::Vector3d &x_from = line[chord.from], &x_to = line[chord.to];
     const Eigen::Vector3d c0 = to.start - from.start;
     const Eigen::Vector3d c = turned_edge(c0, (x_to - x_from) - c0);
     const double w = chord.weight;
@@ -105,9 +105,9 @@ std::vector<Eigen::Vector3d> JointChordPlacement::place(Eigen::VectorXd& q) cons
   }
   const Eigen::MatrixXd x = normal_matrix_.solve(rhs);
   for (int k = 0; k < n; ++k) {
-    const Point& point = points_[free_joints_[k]];
-    shifts[free_joints_[k]] = x.row(k).transpose() - straight(point, q);
-    for (int c = 0; c < 3; ++c) q[point.unknowns[c]] = x(k, c);
+    const int i = free_joints_[k];
+    shifts[i] = x.row(k).transpose() - line[i];
+    for (int c = 0; c < 3; ++c) q[points_[i].unknowns[c]] = x(k, c);
   }
   return shifts;
 }

@@ -41,6 +41,7 @@ class JointChordPlacement {
 
  private:
   struct Point {
+    int vertex = -1;           // graph vertex
     int free_joint = -1;       // index in free_joints_, or -1 for a fixed point
     Eigen::Vector3i unknowns;  // free unknowns of x, y, z (-1: held)
     Eigen::Vector3d start;     // position at q0
@@ -55,8 +56,7 @@ class JointChordPlacement {
   // The fit's normal equations (the same for every coordinate).
   void factorize_normal_matrix();
 
-  std::vector<Point> points_;
-  std::vector<int> vertices_;  // graph vertex of each point (a joint's first)
+  std::vector<Point> points_;  // the joints (in order), then the held ends
   int num_joints_ = 0;
   std::vector<int> free_joints_;  // points_ index of each free joint
   std::vector<Chord> chords_;
