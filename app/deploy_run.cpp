@@ -165,6 +165,7 @@ DeploymentSummary deployment_summary(const Deployment& d, const DeploymentResult
   ds.status = result.converged() ? kCompleted : to_string(result.status);
   ds.steps = result.steps.empty() ? 0 : result.steps.back().step;
   ds.failed_attempts = result.failed_attempts;
+  ds.curvature_dropped = result.curvature_dropped;
   ds.iterations = result.iterations;
   ds.start_average_angle = result.start_angle;
   if (d.target == DeploymentTarget::AverageOpeningAngle)

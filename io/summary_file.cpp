@@ -68,6 +68,7 @@ nlohmann::json summary_deployment_json(const DeploymentSummary& d) {
           {"status", d.status},
           {"steps", d.steps},
           {"failed_attempts", d.failed_attempts},
+          {"curvature_dropped", d.curvature_dropped},
           {"iterations", d.iterations},
           {"start_average_angle", d.start_average_angle},
           {"target_average_angle", optional_json(d.target_average_angle)},

@@ -45,8 +45,10 @@
 //   deployment        only for a run with a "deployment": {actuation ("average_opening_angle" |
 //                     "joint_angles"), status ("completed" | "step_failed" | "interrupted"),
 //                     steps (accepted steps after step 0, the start), failed_attempts (steps
-//                     retried with half the increment), iterations (solver iterations or time
-//                     steps, all steps), start_average_angle, target_average_angle (null for
+//                     retried with half the increment), curvature_dropped (step attempts that
+//                     started from the tangent's prediction, the curved one's energy being
+//                     higher), iterations (solver iterations or time steps, all steps),
+//                     start_average_angle, target_average_angle (null for
 //                     joint_angles), final_average_angle (radians), final_torque (dE/dA, energy
 //                     per radian), table ("deployment.csv"), plot ("deployment.png" or null),
 //                     branch_switch_step (the step at which the loaded branch on the side of
@@ -105,6 +107,7 @@ struct DeploymentSummary {
   std::string status;     // "completed" | "step_failed" | "interrupted"
   int steps = 0;
   int failed_attempts = 0;
+  int curvature_dropped = 0;
   long iterations = 0;
   double start_average_angle = 0.0;
   std::optional<double> target_average_angle;

@@ -17,6 +17,7 @@
 #include "integrators/deployment/constrained_objective.hpp"
 #include "integrators/deployment/joint_charts.hpp"
 #include "integrators/deployment/path_predictor.hpp"
+#include "integrators/deployment/predicted_start.hpp"
 #include "integrators/deployment/step_control.hpp"
 #include "integrators/stability/branch_bias.hpp"
 #include "linkage/frame_free_unknowns.hpp"
@@ -161,19 +162,8 @@ class Deployer {
         const Eigen::VectorXd t = constrained_newton_->tangent();
         if (t.size() == q.size() && t.allFinite()) {
           if (!path_.empty()) path_.back().tangent = t;  // for the next step's cubic
-          Eigen::VectorXd predicted = q + change * t;
-          if (options_.predictor == DeploymentPredictor::Quadratic)
-            if (path_.size() == 2)
-              predicted +=
-                  path_curvature_step(in_current_charts(path_[0], problem_.linkage(), rotations_),
-                                      path_[1], t, change, comparable_);
-          constraint_->project(predicted, target);  // round-off only: a . t = 1
-          try {
-            problem_.set_free_dofs(predicted);
-            return;
-          } catch (const std::domain_error&) {
-            problem_.set_free_dofs(q);
-          }
+          if (predict(q, t, change, target)) return;
+          problem_.set_free_dofs(q);
         }
       }
       Eigen::VectorXd shifted = q;
@@ -185,6 +175,30 @@ class Deployer {
     for (size_t k = 0; k < alpha_index_.size(); ++k)
       r[alpha_index_[k]] = start_angles_[k] + s * (plan_.joint_angles[k].angle - start_angles_[k]);
     problem_.set_dofs(r);
+  }
+
+  // Moves to the tangent's prediction q + change t for the average
+  // `target`, or with the quadratic predictor to the curved one unless its
+  // energy is higher (predicted_start.hpp). False when the problem rejected
+  // every prediction.
+  bool predict(const Eigen::VectorXd& q, const Eigen::VectorXd& t, double change, double target) {
+    Eigen::VectorXd linear = q + change * t;
+    constraint_->project(linear, target);  // round-off only: a . t = 1
+    if (options_.predictor != DeploymentPredictor::Quadratic || path_.size() != 2) {
+      try {
+        problem_.set_free_dofs(linear);
+        return true;
+      } catch (const std::domain_error&) {
+        return false;
+      }
+    }
+    Eigen::VectorXd curved =
+        linear + path_curvature_step(in_current_charts(path_[0], problem_.linkage(), rotations_),
+                                     path_[1], t, change, comparable_);
+    constraint_->project(curved, target);
+    const PredictedStart start = lowest_energy_start(problem_, {curved, linear});
+    if (start.index == 1) ++result_.curvature_dropped;
+    return start.index >= 0;
   }
 
   // Solves at s; `abandon`, when given, is asked after every iteration (or

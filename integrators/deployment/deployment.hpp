@@ -72,7 +72,9 @@ enum class DeploymentPredictor {
   // linkage/frame_free_unknowns.hpp); the curvature terms are orthogonal to
   // the constraint's coefficients, so the prediction meets the constraint.
   // The tangent alone at the first step, and after a step that left a
-  // saddle or took the twin's branch (the path jumped there). On manta_ray
+  // saddle or took the twin's branch (the path jumped there), and wherever
+  // the curved prediction's energy is higher than the tangent's (the path
+  // jumped unseen: a snap-through; predicted_start.hpp). On manta_ray
   // the regular steps then converge in 2 Newton iterations, against 3 with
   // the quadratic (docs/model.md 9.3).
   Quadratic,
@@ -179,6 +181,11 @@ struct DeploymentResult : SolveResult {
   DeploymentResult() { status = SolveStatus::StepFailed; }
   std::vector<DeploymentStep> steps;  // accepted steps, from step 0
   int failed_attempts = 0;
+  // Step attempts (failed ones included) that started from the tangent's
+  // prediction because the curved one (DeploymentPredictor::Quadratic) had
+  // the higher energy there: after a snap-through, whose two sides no
+  // smooth curve joins.
+  int curvature_dropped = 0;
   // The step at which the loaded branch on the user's side was taken from
   // the unloaded twin (follow_unloaded_twin), -1 when none was.
   int branch_switch_step = -1;

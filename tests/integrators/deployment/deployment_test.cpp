@@ -310,6 +310,8 @@ TEST_CASE("Each predictor lands on the same path and the curved one needs the fe
     const DeploymentResult r = deploy(problem, average_plan(start + 0.6, 12), options);
     CAPTURE(r.reason);
     REQUIRE(r.converged());
+    // On this smooth path the curved prediction always starts lower.
+    CHECK(r.curvature_dropped == 0);
     long steps_iterations = 0;  // of the steps after the first two (step 0 has no predictor)
     for (size_t k = 2; k < r.steps.size(); ++k) steps_iterations += r.steps[k].iterations;
     // One factorization per iteration, and the final state's, which serves
