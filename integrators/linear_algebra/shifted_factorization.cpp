@@ -18,7 +18,7 @@ ShiftedFactorization factorize_with_shift(CholeskySolver& solver,
   const double mass_norm = mass.norm();
   const double scale = mass_norm > 0.0 ? H.norm() / mass_norm : 0.0;
   if (!(scale > 0.0) || !std::isfinite(scale)) return result;  // H == 0 cannot be shifted usefully
-  double tau = std::max(options.initial_tau, first_tau);
+  double tau = first_tau > 0.0 ? std::max(options.smallest_tau, first_tau) : options.initial_tau;
   for (int attempt = 0; attempt < options.max_attempts; ++attempt, tau *= options.growth) {
     const Eigen::VectorXd shift = (tau * scale) * mass;
     result.status = solver.factorize(H, &shift);

@@ -23,6 +23,14 @@ struct ShiftOptions {
   double initial_tau = 1e-8;  // first relative shift tried after LL^T of H fails
   double growth = 4.0;        // tau multiplier between attempts
   int max_attempts = 40;      // shifted attempts before giving up (tau up to ~1e16)
+  // The smallest relative shift that a warm start (ShiftMemory) may begin
+  // at. Below initial_tau: just past a bifurcation the lowest eigenvalue is
+  // tiny (scary_face's deployment: -1.7e-10 |H| / |M| M), and a shift of
+  // 1e-8 makes each step along its mode 1% of the distance already
+  // travelled, so the descent from the saddle crept for hundreds of
+  // iterations; the memory walks the shift down to just above it instead.
+  // Not 0: a singular H (a mechanism) would be shifted towards round-off.
+  double smallest_tau = 1e-12;
 };
 
 struct ShiftedFactorization {
@@ -37,8 +45,9 @@ struct ShiftedFactorization {
 // of diag(mass) (size n, positive) as described above when H is not
 // positive definite. status is PositiveDefinite on success (solver ready),
 // NonFinite if H holds NaN/inf, NotPositiveDefinite if every attempt failed.
-// first_tau > initial_tau starts the shifted attempts there instead (a
-// warm start from the shift a nearby Hessian needed: ShiftMemory).
+// first_tau > 0 starts the shifted attempts there instead, at smallest_tau
+// at the least (a warm start from the shift a nearby Hessian needed:
+// ShiftMemory).
 ShiftedFactorization factorize_with_shift(CholeskySolver& solver,
                                           const Eigen::SparseMatrix<double>& H,
                                           const Eigen::VectorXd& mass,
@@ -49,16 +58,24 @@ ShiftedFactorization factorize_with_shift(CholeskySolver& solver,
 // search one growth factor below it rather than at initial_tau: where the
 // Hessians stay indefinite, each iteration then tries two or three shifts
 // instead of climbing the whole ladder again (Nocedal and Wright, Numerical
-// Optimization, 2006, algorithm 3.3). Each unshifted success of the matrix
-// it remembers lowers the start by one growth factor, so the memory fades
-// where that matrix is definite.
+// Optimization, 2006, algorithm 3.3), and the start walks down, one growth
+// factor per success, to just above the shift the Hessians need, below
+// initial_tau if they need less (ShiftOptions::smallest_tau). Each
+// unshifted success of the matrix it remembers lowers the start by one
+// growth factor, so the memory fades where that matrix is definite, and is
+// forgotten once its start would be below initial_tau.
 class ShiftMemory {
  public:
   explicit ShiftMemory(const ShiftOptions& options) : options_(options) {}
   double first_tau() const { return tau_ / options_.growth; }
   void record(const ShiftedFactorization& f) {
     if (f.status != FactorizationStatus::PositiveDefinite) return;
-    tau_ = f.shifted ? f.tau : tau_ / options_.growth;
+    if (f.shifted) {
+      tau_ = f.tau;
+      return;
+    }
+    tau_ /= options_.growth;
+    if (first_tau() < options_.initial_tau) tau_ = 0.0;
   }
 
  private:

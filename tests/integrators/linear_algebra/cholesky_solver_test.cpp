@@ -309,4 +309,60 @@ TEST_CASE("A shift memory starts the next search one step below the last shift")
   CHECK(memory.first_tau() == doctest::Approx(cold.tau / (options.growth * options.growth)));
 }
 
+namespace {
+
+// diag(1, ..., 1, lowest) with a unit mass: the shift needed is -lowest
+// (|H| / |M| is within 2% of 1).
+Eigen::SparseMatrix<double> diagonal_with_lowest(int n, double lowest) {
+  Eigen::VectorXd d = Eigen::VectorXd::Ones(n);
+  d[n - 1] = lowest;
+  return Eigen::SparseMatrix<double>(d.asDiagonal());
+}
+
+// Repeats the memory's warm-started factorization of H; returns the last.
+xshell::ShiftedFactorization repeat_with_memory(const Eigen::SparseMatrix<double>& H,
+                                                const xshell::ShiftOptions& options,
+                                                xshell::ShiftMemory& memory, int times) {
+  CholeskySolver solver;
+  const Eigen::VectorXd mass = Eigen::VectorXd::Ones(H.rows());
+  xshell::ShiftedFactorization f;
+  for (int k = 0; k < times; ++k) {
+    f = xshell::factorize_with_shift(solver, H, mass, options, memory.first_tau());
+    REQUIRE(f.status == FactorizationStatus::PositiveDefinite);
+    memory.record(f);
+  }
+  return f;
+}
+
+}  // namespace
+
+TEST_CASE("A shift memory walks down to just above a tiny negative eigenvalue") {
+  const xshell::ShiftOptions options;
+  const double lowest = -1e-10;  // 100 times below initial_tau
+  const Eigen::SparseMatrix<double> H = diagonal_with_lowest(50, lowest);
+  xshell::ShiftMemory memory(options);
+  const xshell::ShiftedFactorization first = repeat_with_memory(H, options, memory, 1);
+  CHECK(first.tau == options.initial_tau);
+  CHECK(first.factorizations == 2);
+  // One growth factor per repetition, then each tries the next one down
+  // (which fails) and the one that works: within a growth factor of -lowest.
+  const xshell::ShiftedFactorization settled = repeat_with_memory(H, options, memory, 8);
+  CHECK(settled.shift > -lowest);
+  CHECK(settled.shift <= -options.growth * lowest);
+  CHECK(settled.factorizations == 3);
+  // H definite again: the memory below initial_tau is forgotten.
+  CHECK_FALSE(repeat_with_memory(diagonal_with_lowest(50, 1.0), options, memory, 1).shifted);
+  CHECK(memory.first_tau() == 0.0);
+}
+
+TEST_CASE("A shift memory never starts below smallest_tau, even where any shift works") {
+  const xshell::ShiftOptions options;
+  // Singular (a mechanism): LL^T fails, every positive shift succeeds.
+  const Eigen::SparseMatrix<double> H = diagonal_with_lowest(50, 0.0);
+  xshell::ShiftMemory memory(options);
+  const xshell::ShiftedFactorization last = repeat_with_memory(H, options, memory, 40);
+  CHECK(last.tau == doctest::Approx(options.smallest_tau));
+  CHECK(last.factorizations == 2);
+}
+
 }  // namespace xshell::test
