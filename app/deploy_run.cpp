@@ -167,6 +167,7 @@ DeploymentSummary deployment_summary(const Deployment& d, const DeploymentResult
   ds.failed_attempts = result.failed_attempts;
   ds.curvature_dropped = result.curvature_dropped;
   ds.iterations = result.iterations;
+  ds.factorizations = result.factorizations;
   ds.start_average_angle = result.start_angle;
   if (d.target == DeploymentTarget::AverageOpeningAngle)
     ds.target_average_angle = d.average_opening_angle;

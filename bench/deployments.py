@@ -175,7 +175,9 @@ def measure(xshell, folder, args):
         with open(os.path.join(folder, "out", "deployment.csv")) as f:
             table = list(csv.DictReader(f))
     row["unstable_steps"] = sum(1 for t in table if t["stable"] != "true")
-    if table and "factorizations" in table[0]:
+    if "factorizations" in d:
+        row["factorizations"] = d["factorizations"]
+    elif table and "factorizations" in table[0]:  # older runs: the accepted steps' only
         row["factorizations"] = sum(int(t["factorizations"]) for t in table)
     if row["steps"]:
         row["iterations_per_step"] = row["iterations"] / row["steps"]

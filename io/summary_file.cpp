@@ -70,6 +70,7 @@ nlohmann::json summary_deployment_json(const DeploymentSummary& d) {
           {"failed_attempts", d.failed_attempts},
           {"curvature_dropped", d.curvature_dropped},
           {"iterations", d.iterations},
+          {"factorizations", d.factorizations},
           {"start_average_angle", d.start_average_angle},
           {"target_average_angle", optional_json(d.target_average_angle)},
           {"final_average_angle", d.final_average_angle},

@@ -48,9 +48,11 @@
 //                     retried with half the increment), curvature_dropped (step attempts that
 //                     started from the tangent's prediction, the curved one's energy being
 //                     higher), iterations (solver iterations or time steps, all steps),
-//                     start_average_angle, target_average_angle (null for
-//                     joint_angles), final_average_angle (radians), final_torque (dE/dA, energy
-//                     per radian), table ("deployment.csv"), plot ("deployment.png" or null),
+//                     factorizations (the sparse factorizations of every attempt and of the
+//                     twin, where the solver counts them), start_average_angle,
+//                     target_average_angle (null for joint_angles), final_average_angle
+//                     (radians), final_torque (dE/dA, energy per radian), table
+//                     ("deployment.csv"), plot ("deployment.png" or null),
 //                     branch_switch_step (the step at which the loaded branch on the side of
 //                     solver.buckling_direction was taken from the unloaded twin, or null)}
 //   reactions, stresses, joint_forces, lowest_eigenvalues, buckling_load_factor,
@@ -109,6 +111,7 @@ struct DeploymentSummary {
   int failed_attempts = 0;
   int curvature_dropped = 0;
   long iterations = 0;
+  long factorizations = 0;
   double start_average_angle = 0.0;
   std::optional<double> target_average_angle;
   double final_average_angle = 0.0;

@@ -136,6 +136,13 @@ TEST_CASE(
     CHECK(d["final_torque"].get<double>() == doctest::Approx(last_torque).epsilon(1e-12));
     CHECK(d["target_average_angle"].get<double>() == 1.9);
     CHECK(d["table"] == "deployment.csv");
+    // Without failed attempts (and without loads, so without a twin) the
+    // run's factorizations are its steps'.
+    long table_factorizations = 0;
+    for (const auto& row : t.rows) table_factorizations += std::stol(row[11]);
+    CHECK(d["failed_attempts"] == 0);
+    CHECK(d["factorizations"].get<long>() == table_factorizations);
+    CHECK(d["curvature_dropped"] == 0);
     // One VTK snapshot per step: 5 times, 3 parts each (rods, frames, joints).
     const std::string pvd = read_text(dir / "out" / "series.pvd");
     CHECK(count(pvd, "timestep=") == 15);
