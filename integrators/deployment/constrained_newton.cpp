@@ -265,8 +265,9 @@ bool ConstrainedNewtonSolver::Impl::direction(ConstrainedRun& run,
   return true;
 }
 
-// Armijo backtracking from q0 along p (descent_step.hpp) on the exact
-// penalty merit
+// Armijo backtracking from q0 along p, or along the objective's curve
+// (NewtonOptions::follow_path), (descent_step.hpp) on the exact penalty
+// merit
 //   phi(q) = E(q) + mu |a . q - A|:
 // the energy itself on the constraint's plane (where both steps descend:
 // g . p = -r^T K^-1 r < 0), and from a start off the plane, where the
@@ -298,6 +299,10 @@ bool ConstrainedNewtonSolver::Impl::line_search(ConstrainedRun& run, const Eigen
       const Eigen::VectorXd g = evaluator.gradient();
       return g.allFinite() && (w.array() * constraint.projected(g).array()).matrix().norm() < r0;
     };
+    // The linkage's curve (docs/model.md 9.8), joints placed, on steps of an
+    // unshifted Hessian (H's or B^T H B's); shifted steps keep the line.
+    if (options.follow_path && !run.report.shifted)
+      penalty.path = objective_path(evaluator, q0, step.p, true);
     accepted = backtrack_on_energy(evaluator, q0, e0, step.p, penalty, descent);
   } catch (...) {
     objective.set(q0);

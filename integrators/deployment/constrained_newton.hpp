@@ -63,7 +63,8 @@ struct ConstrainedNewtonResult : SolveResult {
 // Bound to one objective and constraint (sizes fixed); keeps the two
 // CHOLMOD symbolic analyses (H and B^T H B) across solve() calls, e.g. over
 // the steps of a deployment. NewtonOptions::line_search is ignored (always
-// the energy).
+// the energy); NewtonOptions::follow_path applies to the steps of an
+// unshifted Hessian (the joints placed too, docs/model.md 9.8).
 class ConstrainedNewtonSolver {
  public:
   ConstrainedNewtonSolver(Objective& objective, const AverageConstraint& constraint,

@@ -376,3 +376,32 @@ TEST_CASE("Adaptive increments reach the same end in fewer steps, the torque on 
 }
 
 }  // namespace xshell::test
+
+namespace xshell::test {
+
+TEST_CASE("Newton steps along the linkage's curve and along the line reach the same equilibria") {
+  std::vector<long> iterations;
+  std::vector<Eigen::VectorXd> ends;
+  for (const bool curve : {false, true}) {
+    LinkageProblem problem = dome_problem(5);
+    const double start = average_opening_angle(problem.linkage());
+    DeploymentOptions options = tight(DeploymentSolver::Newton, 1e-9);
+    options.newton.follow_path = curve;
+    const DeploymentResult r = deploy(problem, average_plan(start + 0.8, 1), options);
+    CAPTURE(r.reason);
+    REQUIRE(r.converged());
+    iterations.push_back(r.iterations);
+    Eigen::VectorXd vertices(3 * problem.linkage().graph().vertices.size());
+    for (int v = 0; v < vertices.size() / 3; ++v)
+      vertices.segment<3>(3 * v) = problem.linkage().vertex_position(v);
+    ends.push_back(vertices);
+  }
+  MESSAGE("Newton iterations: along the line " << iterations[0] << ", along the curve "
+                                               << iterations[1]);
+  // One long step: the rods turn by 0.8 rad, and the curve saves an
+  // iteration (the line would take as many without it).
+  CHECK(iterations[1] < iterations[0]);
+  CHECK((ends[1] - ends[0]).cwiseAbs().maxCoeff() <= 1e-9);
+}
+
+}  // namespace xshell::test
