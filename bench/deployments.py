@@ -49,6 +49,7 @@ import csv
 import json
 import math
 import os
+import shutil
 import statistics
 import subprocess
 import sys
@@ -242,6 +243,15 @@ def main():
     xshell = os.path.abspath(a.xshell)
     root = a.keep or tempfile.mkdtemp(prefix="xshell-deployments-")
     os.makedirs(root, exist_ok=True)
+    try:
+        return run_cases(a, xshell, names, root)
+    finally:
+        if not a.keep:  # each case's VTK series: gigabytes over a few runs
+            shutil.rmtree(root, ignore_errors=True)
+
+
+def run_cases(a, xshell, names, root):
+    """Prepares and measures the cases in `root`; prints the table."""
     cases = {n: prepare(xshell, a.data, n, a.subdivisions, a.steps, root, a.gravity, a.density,
                         a.solver)
              for n in names}
