@@ -34,6 +34,15 @@ DeploymentPlan average_plan(double angle, int steps) {
   return p;
 }
 
+// Every vertex's position, stacked (the unknowns' thetas and omegas depend
+// on where the solvers rebased; the vertices do not).
+Eigen::VectorXd stacked_vertices(const LinkageProblem& problem) {
+  Eigen::VectorXd vertices(3 * problem.linkage().graph().vertices.size());
+  for (int v = 0; v < vertices.size() / 3; ++v)
+    vertices.segment<3>(3 * v) = problem.linkage().vertex_position(v);
+  return vertices;
+}
+
 DeploymentResult run(LinkageProblem& problem, const DeploymentPlan& plan,
                      const DeploymentOptions& options) {
   const DeploymentResult r = deploy(problem, plan, options);
@@ -322,10 +331,7 @@ TEST_CASE("Each predictor lands on the same path and the curved one needs the fe
         CHECK(r.steps[k].factorizations == r.steps[k].iterations + 1);
       }
     iterations.push_back(steps_iterations);
-    Eigen::VectorXd vertices(3 * problem.linkage().graph().vertices.size());
-    for (int v = 0; v < vertices.size() / 3; ++v)
-      vertices.segment<3>(3 * v) = problem.linkage().vertex_position(v);
-    ends.push_back(vertices);
+    ends.push_back(stacked_vertices(problem));
   }
   MESSAGE("Newton iterations of steps 2-12: uniform shift "
           << iterations[0] << ", tangent " << iterations[1] << ", curved " << iterations[2]);
@@ -399,10 +405,7 @@ TEST_CASE("Newton steps along the linkage's curve and along the line reach the s
     REQUIRE(r.converged());
     iterations.push_back(r.iterations);
     first_energies.push_back(first_energy);
-    Eigen::VectorXd vertices(3 * problem.linkage().graph().vertices.size());
-    for (int v = 0; v < vertices.size() / 3; ++v)
-      vertices.segment<3>(3 * v) = problem.linkage().vertex_position(v);
-    ends.push_back(vertices);
+    ends.push_back(stacked_vertices(problem));
   }
   MESSAGE("Newton iterations: along the line " << iterations[0] << ", along the curve "
                                                << iterations[1]);
