@@ -46,8 +46,8 @@
 //                     "joint_angles"), status ("completed" | "step_failed" | "interrupted"),
 //                     steps (accepted steps after step 0, the start), failed_attempts (steps
 //                     retried with half the increment), curvature_dropped (step attempts that
-//                     started from the tangent's prediction, the curved one's energy being
-//                     higher), iterations (solver iterations or time steps, all steps),
+//                     started from the tangent's prediction, every curved one's energy
+//                     being higher), iterations (solver iterations or time steps, all steps),
 //                     factorizations (the sparse factorizations of every attempt and of the
 //                     twin, where the solver counts them), start_average_angle,
 //                     target_average_angle (null for joint_angles), final_average_angle

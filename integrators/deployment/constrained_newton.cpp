@@ -84,6 +84,13 @@ struct ConstrainedNewtonSolver::Impl {
     Eigen::VectorXd q;  // empty: none
     bool full = false, reduced = false;
   } final_factorization;
+  // What the last tangent() solved with: second_derivative() may reuse it
+  // while no factorization has been made since.
+  struct TangentFactorization {
+    long factorizations = -1;  // factorizations() after it; -1: none
+    bool full = false;         // H's (else B^T H B's)
+    Eigen::VectorXd t;
+  } tangent_factorization;
   Impl(Objective& objective, const AverageConstraint& constraint, const NewtonOptions& options)
       : objective(objective),
         constraint(constraint),
@@ -422,10 +429,13 @@ Eigen::VectorXd ConstrainedNewtonSolver::tangent() {
   const Eigen::VectorXd& a = constraint_.coefficients();
   const Eigen::SparseMatrix<double>& H = objective_.hessian();
   const bool reuse = s.final_factorization_here();
+  Impl::TangentFactorization& used = s.tangent_factorization;
+  used.factorizations = -1;
   if (reuse ? s.final_factorization.full
             : s.full.factorize(H) == FactorizationStatus::PositiveDefinite) {
     const Eigen::VectorXd x = s.full.solve(a);
-    return x / a.dot(x);
+    used = {s.factorizations(), true, x / a.dot(x)};
+    return used.t;
   }
   if (!(reuse && s.final_factorization.reduced) &&
       s.factorize_reduced(H, objective_.mass()).status != FactorizationStatus::PositiveDefinite)
@@ -433,7 +443,20 @@ Eigen::VectorXd ConstrainedNewtonSolver::tangent() {
   s.final_factorization.q.resize(0);  // its solvers now hold other matrices
   const Eigen::VectorXd t0 = a / a.squaredNorm();
   const Eigen::VectorXd Ht0 = H * t0;
-  return t0 - constraint_.expand(s.reduced.solve(constraint_.restrict(Ht0)));
+  used = {s.factorizations(), false,
+          t0 - constraint_.expand(s.reduced.solve(constraint_.restrict(Ht0)))};
+  return used.t;
+}
+
+Eigen::VectorXd ConstrainedNewtonSolver::second_derivative(const Eigen::VectorXd& third) {
+  Impl& s = *impl_;
+  const Impl::TangentFactorization& used = s.tangent_factorization;
+  if (used.factorizations < 0 || used.factorizations != s.factorizations() ||
+      third.size() != objective_.size())
+    return {};
+  if (!used.full) return -constraint_.expand(s.reduced.solve(constraint_.restrict(third)));
+  const Eigen::VectorXd x = s.full.solve(third);
+  return -(x - constraint_.coefficients().dot(x) * used.t);
 }
 
 Eigen::VectorXd ConstrainedNewtonSolver::adjoint(const Eigen::VectorXd& f) {

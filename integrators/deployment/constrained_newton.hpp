@@ -90,6 +90,17 @@ class ConstrainedNewtonSolver {
   // B^T H B was positive definite there).
   Eigen::VectorXd tangent();
 
+  // The path's second derivative q'' = d2q/dA2 at the configuration of the
+  // last tangent(), from `third` = D3E[t, t], the gradient's second
+  // derivative along that tangent t: differentiating grad E(q(A)) =
+  // tau(A) a twice gives H q'' + third = tau'' a with a . q'' = 0, so
+  //   q'' = -(x - (a . x) t),  x = H^-1 third,
+  // or on the null space q'' = -B (B^T H B)^-1 B^T third, with the
+  // factorization that tangent() used (no new one). Empty when a
+  // factorization has been made since (a solve's, an adjoint's) or the
+  // last tangent() failed.
+  Eigen::VectorXd second_derivative(const Eigen::VectorXd& third);
+
   // Numeric factorizations so far (solves, tangents and adjoints).
   long factorizations() const;
 

@@ -32,6 +32,11 @@ namespace {
 // 1e-10 relative.
 constexpr double kTorqueStep = 1e-5;
 
+// Step of the gradient's central second difference along the path's
+// tangent (radians of the average opening angle): the truncation error is
+// O(1e-6) relative, the round-off eps |g| / 1e-6, about 1e-10 |g|.
+constexpr double kCurvatureStep = 1e-3;
+
 // The outcome of one solve, whichever solver ran it.
 struct Attempt {
   SolveResult solve;
@@ -178,27 +183,73 @@ class Deployer {
   }
 
   // Moves to the tangent's prediction q + change t for the average
-  // `target`, or with the quadratic predictor to the curved one unless its
-  // energy is higher (predicted_start.hpp). False when the problem rejected
-  // every prediction.
+  // `target`, or with the quadratic predictor to the curved prediction of
+  // lowest energy, the tangent's included (predicted_start.hpp). False when
+  // the problem rejected every prediction.
   bool predict(const Eigen::VectorXd& q, const Eigen::VectorXd& t, double change, double target) {
     Eigen::VectorXd linear = q + change * t;
     constraint_->project(linear, target);  // round-off only: a . t = 1
-    if (options_.predictor != DeploymentPredictor::Quadratic || path_.size() != 2) {
+    std::vector<Eigen::VectorXd> starts;
+    if (options_.predictor == DeploymentPredictor::Quadratic)
+      starts = curved_predictions(q, t, linear, change, target);
+    starts.push_back(std::move(linear));
+    if (starts.size() == 1) {  // no choice, no energy to compare
       try {
-        problem_.set_free_dofs(linear);
+        problem_.set_free_dofs(starts.front());
         return true;
       } catch (const std::domain_error&) {
         return false;
       }
     }
-    Eigen::VectorXd curved =
-        linear + path_curvature_step(in_current_charts(path_[0], problem_.linkage(), rotations_),
-                                     path_[1], t, change, comparable_);
-    constraint_->project(curved, target);
-    const PredictedStart start = lowest_energy_start(problem_, {curved, linear});
-    if (start.index == 1) ++result_.curvature_dropped;
+    const PredictedStart start = lowest_energy_start(problem_, starts);
+    if (start.index > 0 && start.index + 1 == static_cast<int>(starts.size()))
+      ++result_.curvature_dropped;
     return start.index >= 0;
+  }
+
+  // The curved predictions from q (path_predictor.hpp), none before the
+  // last two equilibria lie on one path: the cubic (Hermite) through them,
+  // then, when the path's second derivative could be found, the Taylor
+  // cubic and the Taylor polynomial. (From the Taylor polynomial alone, at
+  // the first step and after a jump, the benchmark's deployments took more
+  // iterations: darth_vader 123 against 105.)
+  std::vector<Eigen::VectorXd> curved_predictions(const Eigen::VectorXd& q,
+                                                  const Eigen::VectorXd& t,
+                                                  const Eigen::VectorXd& linear, double change,
+                                                  double target) {
+    if (path_.size() != 2) return {};
+    const PathPoint previous = in_current_charts(path_[0], problem_.linkage(), rotations_);
+    std::vector<Eigen::VectorXd> out{
+        linear + path_curvature_step(previous, path_[1], t, change, comparable_)};
+    const Eigen::VectorXd k = path_second_derivative(q, t);
+    if (k.size() == q.size()) {
+      out.push_back(linear + taylor_cubic_step(previous, path_[1], t, k, change, comparable_));
+      out.push_back(linear + 0.5 * change * change * k);
+    }
+    for (Eigen::VectorXd& start : out) constraint_->project(start, target);
+    return out;
+  }
+
+  // q'' at the equilibrium q, whose path tangent is t (the last tangent()):
+  // D3E[t, t] by the gradient's central second difference, then
+  // ConstrainedNewtonSolver::second_derivative. Empty when a point of the
+  // difference is rejected or a value is not finite. Leaves the problem at q.
+  Eigen::VectorXd path_second_derivative(const Eigen::VectorXd& q, const Eigen::VectorXd& t) {
+    Eigen::VectorXd third;
+    try {
+      third = gradient_second_difference(
+          [&](const Eigen::VectorXd& x) {
+            problem_.set_free_dofs(x);
+            return problem_.free_gradient();
+          },
+          q, t, kCurvatureStep);
+    } catch (const std::domain_error&) {
+      problem_.set_free_dofs(q);
+      return {};
+    }
+    if (!third.allFinite()) return {};
+    const Eigen::VectorXd k = constrained_newton_->second_derivative(third);
+    return k.allFinite() ? k : Eigen::VectorXd();
   }
 
   // Solves at s; `abandon`, when given, is asked after every iteration (or

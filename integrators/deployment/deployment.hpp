@@ -64,19 +64,24 @@ enum class DeploymentPredictor {
   // the next equilibrium. Falls back to the uniform shift when no tangent
   // can be computed or the predicted configuration is invalid.
   Tangent,
-  // The tangent and the curvature of the path (path_predictor.hpp): the
-  // cubic through the last two accepted equilibria with the tangents at
-  // both (the quadratic through them with the last tangent alone before the
-  // earlier tangent is known), on the unknowns that keep their meaning
-  // across the solvers' rebases (positions, opening angles, edge lengths:
-  // linkage/frame_free_unknowns.hpp); the curvature terms are orthogonal to
-  // the constraint's coefficients, so the prediction meets the constraint.
-  // The tangent alone at the first step, and after a step that left a
-  // saddle or took the twin's branch (the path jumped there), and wherever
-  // the curved prediction's energy is higher than the tangent's (the path
-  // jumped unseen: a snap-through; predicted_start.hpp). On manta_ray
-  // the regular steps then converge in 2 Newton iterations, against 3 with
-  // the quadratic (docs/model.md 9.3).
+  // The tangent and the curvature of the path (path_predictor.hpp), the
+  // lowest in energy of these starts (predicted_start.hpp; they all meet
+  // the constraint):
+  //  - the cubic through the last two accepted equilibria with the tangents
+  //    at both (the quadratic through them with the last tangent alone
+  //    before the earlier tangent is known), on the unknowns that keep
+  //    their meaning across the solvers' rebases (positions, opening
+  //    angles, edge lengths: linkage/frame_free_unknowns.hpp);
+  //  - the Taylor polynomial of degree 2 at the last equilibrium, its
+  //    second derivative from the gradient's second difference along the
+  //    tangent (two gradients more, no factorization), on every unknown,
+  //    and the cubic through the equilibrium before with it;
+  //  - the tangent alone.
+  // The two-equilibria ones are left out at the first step, and after a
+  // step that left a saddle or took the twin's branch (the path jumped
+  // there); a snap-through makes the path jump unseen, and the energies
+  // then choose. On manta_ray the regular steps converge in 2 Newton
+  // iterations, against 3 with the quadratic (docs/model.md 9.3).
   Quadratic,
 };
 
@@ -182,8 +187,8 @@ struct DeploymentResult : SolveResult {
   std::vector<DeploymentStep> steps;  // accepted steps, from step 0
   int failed_attempts = 0;
   // Step attempts (failed ones included) that started from the tangent's
-  // prediction because the curved one (DeploymentPredictor::Quadratic) had
-  // the higher energy there: after a snap-through, whose two sides no
+  // prediction because every curved one (DeploymentPredictor::Quadratic)
+  // had a higher energy there: after a snap-through, whose two sides no
   // smooth curve joins.
   int curvature_dropped = 0;
   // The step at which the loaded branch on the user's side was taken from

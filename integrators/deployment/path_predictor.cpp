@@ -25,4 +25,27 @@ Eigen::VectorXd path_curvature_step(const PathPoint& previous, const PathPoint& 
   return step;
 }
 
+Eigen::VectorXd taylor_cubic_step(const PathPoint& previous, const PathPoint& last,
+                                  const Eigen::VectorXd& tangent, const Eigen::VectorXd& curvature,
+                                  double h, const std::vector<bool>& comparable) {
+  Eigen::VectorXd step = 0.5 * h * h * curvature;
+  const double h0 = last.value - previous.value;
+  if (!(std::abs(h0) > 0.0)) return step;
+  const double r3 = (h / h0) * (h / h0) * (h / h0);
+  for (Eigen::Index i = 0; i < step.size(); ++i) {
+    if (!comparable[i]) continue;
+    const double d = previous.q[i] - last.q[i] + h0 * tangent[i];
+    step[i] += r3 * (0.5 * h0 * h0 * curvature[i] - d);
+  }
+  return step;
+}
+
+Eigen::VectorXd gradient_second_difference(
+    const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& gradient,
+    const Eigen::VectorXd& q, const Eigen::VectorXd& t, double eps) {
+  const Eigen::VectorXd plus = gradient(q + eps * t);
+  const Eigen::VectorXd minus = gradient(q - eps * t);
+  return (plus - 2.0 * gradient(q) + minus) / (eps * eps);
+}
+
 }  // namespace xshell

@@ -8,12 +8,21 @@
 //    both equilibria and both tangents predicts
 //      q(A + h) ~ q1 + h t1 + (h/h0)^2 (3 D + h0 E) + (h/h0)^3 (2 D + h0 E),
 //    E = t0 - t1, with an error O(h^4).
-// Both terms are orthogonal to the constraint's coefficients a when
-// a . t0 = a . t1 = 1 (a . D = 0, a . E = 0): the prediction stays on
-// a . q = A + h.
+//  - with the path's second derivative k1 = q''(A) at q1 (from the
+//    gradient's third derivative along t1, ConstrainedNewtonSolver::
+//    second_derivative), the Taylor polynomial q1 + h t1 + (h^2/2) k1,
+//    error O(h^3), which needs no earlier equilibrium (so it serves right
+//    after a jump off the path) and covers every unknown, and the cubic
+//    through q0 that has it at q1:
+//      q(A + h) ~ q1 + h t1 + (h^2/2) k1 + (h/h0)^3 ((h0^2/2) k1 - D),
+//    error O(h^4).
+// All these terms are orthogonal to the constraint's coefficients a when
+// a . t0 = a . t1 = 1 and a . k1 = 0 (a . D = 0, a . E = 0): the
+// prediction stays on a . q = A + h.
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 namespace xshell {
@@ -35,5 +44,20 @@ struct PathPoint {
 Eigen::VectorXd path_curvature_step(const PathPoint& previous, const PathPoint& last,
                                     const Eigen::VectorXd& tangent, double h,
                                     const std::vector<bool>& comparable);
+
+// The Taylor cubic's terms beyond q1 + h t1 above: (h^2/2) k1 on every
+// unknown, plus the cubic's term on those marked in `comparable` (only
+// (h^2/2) k1 when h0 = 0). Sizes: q, t, k1, previous.q and comparable alike.
+Eigen::VectorXd taylor_cubic_step(const PathPoint& previous, const PathPoint& last,
+                                  const Eigen::VectorXd& tangent, const Eigen::VectorXd& curvature,
+                                  double h, const std::vector<bool>& comparable);
+
+// D3E[t, t] at q by the central second difference of the gradient along t,
+//   (g(q + eps t) - 2 g(q) + g(q - eps t)) / eps^2,
+// error O(eps^2) (the round-off: eps_machine |g| / eps^2). `gradient`
+// evaluates g at a point (and may throw; so does this then), at q last.
+Eigen::VectorXd gradient_second_difference(
+    const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& gradient,
+    const Eigen::VectorXd& q, const Eigen::VectorXd& t, double eps);
 
 }  // namespace xshell

@@ -11,6 +11,7 @@
 #include "integrators/common/linkage_objective.hpp"
 #include "integrators/deployment/average_constraint.hpp"
 #include "integrators/deployment/deployment_fixtures.hpp"
+#include "integrators/deployment/path_predictor.hpp"
 
 namespace xshell::test {
 
@@ -69,6 +70,46 @@ class Buckling : public Objective {
 
  private:
   Eigen::VectorXd q_ = Eigen::Vector3d(0.5, 0.5, 0.0);
+  Eigen::SparseMatrix<double> H_;
+};
+
+// Two averaged unknowns u, v (A = (u + v) / 2) and w, a curved path:
+//   E = (u - v)^2 + (w - A^2)^2 + s A^2,
+// whose constrained equilibrium at A is u = v = A, w = A^2: q''(A) =
+// (0, 0, 2). Along the path, H restricted to (A, w) has the Schur
+// complement 2 s: H is positive definite for s > 0, indefinite for s < 0,
+// where B^T H B (in u - v and w) stays positive definite.
+class Parabola : public Objective {
+ public:
+  explicit Parabola(double s) : s_(s) {}
+  Eigen::Index size() const override { return 3; }
+  Eigen::VectorXd get() const override { return q_; }
+  void set(const Eigen::VectorXd& q) override { q_ = q; }
+  double energy() const override {
+    const double d = q_[0] - q_[1], A = 0.5 * (q_[0] + q_[1]), r = q_[2] - A * A;
+    return d * d + r * r + s_ * A * A;
+  }
+  Eigen::VectorXd gradient() const override {
+    const double d = q_[0] - q_[1], A = 0.5 * (q_[0] + q_[1]), r = q_[2] - A * A;
+    const double dA = -4.0 * A * r + 2.0 * s_ * A;
+    return Eigen::Vector3d(0.5 * dA + 2.0 * d, 0.5 * dA - 2.0 * d, 2.0 * r);
+  }
+  const Eigen::SparseMatrix<double>& hessian() override {
+    const double A = 0.5 * (q_[0] + q_[1]), r = q_[2] - A * A;
+    const double AA = 0.25 * (-4.0 * r + 8.0 * A * A + 2.0 * s_), Aw = 0.5 * (-4.0 * A);
+    Eigen::Matrix3d H;
+    H << AA + 2.0, AA - 2.0, Aw,  //
+        AA - 2.0, AA + 2.0, Aw,   //
+        Aw, Aw, 2.0;
+    H_ = H.sparseView(0.0, 0.0);
+    return H_;
+  }
+  Eigen::VectorXd gradient_weights() const override { return Eigen::VectorXd::Ones(3); }
+  Eigen::VectorXd mass() const override { return Eigen::VectorXd::Ones(3); }
+
+ private:
+  double s_;
+  Eigen::VectorXd q_ = Eigen::Vector3d(0.3, 0.2, 0.1);
   Eigen::SparseMatrix<double> H_;
 };
 
@@ -216,6 +257,50 @@ TEST_CASE("Constrained Newton leaves a symmetric saddle along negative curvature
       CHECK(r.multiplier == doctest::Approx(2.0).epsilon(1e-9));
     }
     CHECK(0.5 * (q[0] + q[1]) == doctest::Approx(1.0).epsilon(1e-14));
+    ++cases;
+  }
+  CHECK(cases == 2);
+}
+
+TEST_CASE(
+    "Constrained Newton: the path's second derivative from the tangent's factorization, H "
+    "definite or not") {
+  int cases = 0;
+  for (double s : {1.0, -10.0}) {
+    CAPTURE(s);
+    Parabola objective(s);
+    const AverageConstraint c(3, {0, 1}, {-1, 0}, 2, 0.0);
+    NewtonOptions options;
+    options.gradient_tolerance = 1e-12;
+    ConstrainedNewtonSolver solver(objective, c, options);
+    const double A = 0.5;
+    const ConstrainedNewtonResult r = solver.solve(A);
+    CAPTURE(r.reason);
+    REQUIRE(r.converged());
+    CHECK((objective.get() - Eigen::Vector3d(A, A, A * A)).norm() < 1e-9);
+    CHECK(r.schur_iterations == (s > 0.0 ? r.iterations : 0));
+    const long factorizations = solver.factorizations();
+    const Eigen::VectorXd t = solver.tangent();
+    REQUIRE(t.size() == 3);
+    CHECK((t - Eigen::Vector3d(1.0, 1.0, 2.0 * A)).norm() < 1e-8);
+    // The gradient is cubic along a line: its central second difference
+    // is exact up to round-off.
+    const Eigen::VectorXd q = objective.get();
+    const Eigen::VectorXd third = gradient_second_difference(
+        [&](const Eigen::VectorXd& x) {
+          objective.set(x);
+          return objective.gradient();
+        },
+        q, t, 1e-3);
+    CHECK(objective.get() == q);
+    const Eigen::VectorXd k = solver.second_derivative(third);
+    REQUIRE(k.size() == 3);
+    CHECK((k - Eigen::Vector3d(0.0, 0.0, 2.0)).norm() < 1e-6);
+    CHECK(std::abs(c.coefficients().dot(k)) < 1e-12);
+    CHECK(solver.factorizations() == factorizations);
+    // The next solve's factorizations replace the tangent's.
+    REQUIRE(solver.solve(A + 0.1).converged());
+    CHECK(solver.second_derivative(third).size() == 0);
     ++cases;
   }
   CHECK(cases == 2);

@@ -22,6 +22,25 @@ Eigen::VectorXd tangent(double a) {
   return t;
 }
 
+Eigen::VectorXd second_derivative(double a) {
+  Eigen::VectorXd k(4);
+  k << -std::cos(a), -4 * std::sin(2 * a), std::exp(a), 0.0;
+  return k;
+}
+
+// Largest error of the Taylor prediction of path(a + h) from a, and with
+// `cubic` the Taylor cubic's through a - h too.
+double taylor_error(double a, double h, bool cubic) {
+  const PathPoint previous{path(a - h), a - h}, last{path(a), a};
+  Eigen::VectorXd predicted = last.q + h * tangent(a);
+  if (cubic)
+    predicted += taylor_cubic_step(previous, last, tangent(a), second_derivative(a), h,
+                                   {true, true, true, true});
+  else
+    predicted += 0.5 * h * h * second_derivative(a);
+  return (predicted - path(a + h)).cwiseAbs().maxCoeff();
+}
+
 // Largest error of the prediction of path(a + h) from a and a - h (with
 // the tangent at a - h too when `cubic`).
 double error(double a, double h, bool curved, bool cubic = false) {
@@ -81,6 +100,68 @@ TEST_CASE("With both tangents the cubic predictor's error falls as h^4") {
       last.q + h * cubic_tangent(s) +
       path_curvature_step(previous, last, cubic_tangent(s), h, {true, true});
   CHECK((predicted - cubic_path(s + h)).norm() <= 1e-14);
+}
+
+TEST_CASE("The Taylor polynomial's error falls as h^3, the Taylor cubic's as h^4") {
+  const double a = 0.7;
+  int halvings = 0;
+  for (double h = 0.1; h > 0.01; h /= 2) {
+    CAPTURE(h);
+    const double taylor = taylor_error(a, h, false) / taylor_error(a, h / 2, false);
+    const double cubic = taylor_error(a, h, true) / taylor_error(a, h / 2, true);
+    CHECK(taylor == doctest::Approx(8.0).epsilon(0.15));
+    CHECK(cubic == doctest::Approx(16.0).epsilon(0.15));
+    CHECK(taylor_error(a, h, true) < 0.5 * taylor_error(a, h, false));
+    ++halvings;
+  }
+  CHECK(halvings == 4);
+  // Exact on a cubic path, on the compared unknowns; the Taylor term alone
+  // on the others (and wherever the last step had no length).
+  const auto cubic_path = [](double s) {
+    return Eigen::Vector3d(1.0 - 2.0 * s + 3.0 * s * s - 0.5 * s * s * s, 2.0 * s * s * s - s * s,
+                           s);
+  };
+  const auto cubic_tangent = [](double s) {
+    return Eigen::Vector3d(-2.0 + 6.0 * s - 1.5 * s * s, 6.0 * s * s - 2.0 * s, 1.0);
+  };
+  const auto cubic_curvature = [](double s) {
+    return Eigen::Vector3d(6.0 - 3.0 * s, 12.0 * s - 2.0, 0.0);
+  };
+  const double s = 0.4, h = 0.3;
+  const PathPoint previous{cubic_path(s - 0.2), s - 0.2}, last{cubic_path(s), s};
+  const Eigen::VectorXd step = taylor_cubic_step(previous, last, cubic_tangent(s),
+                                                 cubic_curvature(s), h, {true, false, true});
+  const Eigen::VectorXd predicted = last.q + h * cubic_tangent(s) + step;
+  CHECK(std::abs(predicted[0] - cubic_path(s + h)[0]) <= 1e-14);
+  CHECK(step[1] == doctest::Approx(0.5 * h * h * cubic_curvature(s)[1]).epsilon(1e-15));
+  CHECK(std::abs(step[2]) <= 1e-15);
+  const Eigen::VectorXd still =
+      taylor_cubic_step(last, last, cubic_tangent(s), cubic_curvature(s), h, {true, true, true});
+  CHECK((still - 0.5 * h * h * cubic_curvature(s)).norm() <= 1e-15);
+}
+
+TEST_CASE("The gradient's second difference along t converges as eps^2 to D3E[t, t]") {
+  // E = sum_i x_i^5 / 5 + x_0 x_1^3: g = (x_0^4 + x_1^3, x_1^4 + 3 x_0 x_1^2),
+  // D3E[t, t] = (12 x_0^2 t_0^2 + 6 x_1 t_1^2, 12 x_1^2 t_1^2 + 6 x_0 t_1^2 + 12 x_1 t_0 t_1).
+  const auto gradient = [](const Eigen::VectorXd& x) {
+    return Eigen::Vector2d(std::pow(x[0], 4) + std::pow(x[1], 3),
+                           std::pow(x[1], 4) + 3.0 * x[0] * x[1] * x[1]);
+  };
+  const Eigen::Vector2d x(0.7, -0.4), t(1.3, 0.6);
+  const Eigen::Vector2d exact(
+      12 * x[0] * x[0] * t[0] * t[0] + 6 * x[1] * t[1] * t[1],
+      12 * x[1] * x[1] * t[1] * t[1] + 6 * x[0] * t[1] * t[1] + 12 * x[1] * t[0] * t[1]);
+  const auto error = [&](double eps) {
+    return (gradient_second_difference(gradient, x, t, eps) - exact).norm();
+  };
+  int halvings = 0;
+  for (double eps = 0.1; eps > 0.01; eps /= 2) {
+    CAPTURE(eps);
+    CHECK(error(eps) / error(eps / 2) == doctest::Approx(4.0).epsilon(0.1));
+    ++halvings;
+  }
+  CHECK(halvings == 4);
+  CHECK(error(1e-3) < 1e-5 * exact.norm());
 }
 
 TEST_CASE("The curvature step leaves the parameter and the unknowns not compared unchanged") {
