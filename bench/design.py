@@ -28,6 +28,7 @@ import argparse
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -101,7 +102,7 @@ def main():
                                                        "elasticrods"))
     parser.add_argument("--iterations", type=int, default=30)
     parser.add_argument("--smoothing", type=int, default=3)
-    parser.add_argument("--keep", help="keep the runs' folders here")
+    parser.add_argument("--keep", help="run in this folder and keep it (default: a temporary one)")
     args = parser.parse_args()
     obj = os.path.abspath(os.path.join(args.data, "manta_ray_5ca2f7ab.obj"))
     if not os.path.exists(obj):
@@ -110,7 +111,15 @@ def main():
     xshell = os.path.abspath(args.xshell)
     folder = args.keep or tempfile.mkdtemp(prefix="xshell-bench-design-")
     os.makedirs(folder, exist_ok=True)
+    try:
+        return run_design(args, xshell, obj, folder)
+    finally:
+        if not args.keep:  # the runs' outputs
+            shutil.rmtree(folder, ignore_errors=True)
 
+
+def run_design(args, xshell, obj, folder):
+    """Deploys, designs and prints the report, in `folder`."""
     deploy = base_config(obj)
     deploy["deployment"] = {"average_opening_angle": ANGLE, "steps": 20}
     deploy["output"]["every"] = 1000
