@@ -20,6 +20,13 @@ namespace {
 // iterations while the energy no longer changes.
 constexpr int kStalledIterations = 5;
 
+// Converging to a saddle (docs/model.md 9.3): two shifted steps in a row,
+// the last one lowering the measure by less than kLinearRate (a shifted
+// Newton step converges linearly), to below kNearCritical of the solve's
+// start.
+constexpr double kLinearRate = 0.01;
+constexpr double kNearCritical = 1e-3;
+
 // The state of one solve() between its steps.
 struct ConstrainedRun {
   ConstrainedRun(double target, const NewtonCallbacks& callbacks, double constraint_tolerance,
@@ -49,6 +56,12 @@ struct ConstrainedRun {
   // shorten it (step_cap_after).
   double step_cap = 0.0;
   bool capped = false;  // the last step was scaled down to step_cap
+  // The iteration before the last: its step was shifted, and the measure
+  // it started from.
+  bool previous_shifted = false;
+  double previous_measure = 0.0;
+  double start_measure = 0.0;
+  bool early_escape_tried = false;  // once per solve
 };
 
 // The Newton step p and its multiplier tau.
@@ -129,6 +142,8 @@ struct ConstrainedNewtonSolver::Impl {
   void record_step(ConstrainedRun& run, const Eigen::VectorXd& q0, double e0,
                    const Eigen::VectorXd& w);
   bool escape(ConstrainedRun& run);
+  bool converging_to_saddle(const ConstrainedRun& run) const;
+  bool leave_saddle(ConstrainedRun& run);
   bool escape_saddle(ConstrainedRun& run);
   void finish(ConstrainedRun& run);
 };
@@ -156,7 +171,13 @@ ConstrainedNewtonResult ConstrainedNewtonSolver::solve(double target,
   s.start(run);
   run.result.setup_seconds = seconds_since(start);
   do {  // iterations, and again after each escape from a saddle
-    while (!s.finished(run) && s.iterate(run)) ++run.iteration;
+    while (!s.finished(run) && s.iterate(run)) {
+      ++run.iteration;
+      if (s.converging_to_saddle(run)) {
+        run.early_escape_tried = true;
+        s.leave_saddle(run);
+      }
+    }
   } while (s.escape(run));
   s.finish(run);
   run.result.seconds = seconds_since(start);
@@ -174,6 +195,7 @@ void ConstrainedNewtonSolver::Impl::start(ConstrainedRun& run) {
   run.report.gradient_measure = measure(objective.gradient_weights(), evaluator.gradient());
   if (run.callbacks.on_iteration) run.callbacks.on_iteration(run.report);
   run.best_measure = run.report.gradient_measure;
+  run.start_measure = run.report.gradient_measure;
 }
 
 bool ConstrainedNewtonSolver::Impl::finished(ConstrainedRun& run) {
@@ -208,6 +230,8 @@ bool ConstrainedNewtonSolver::Impl::iterate(ConstrainedRun& run) {
   const Eigen::VectorXd g0 = evaluator.gradient();
   const double e0 = objective.energy();
   const double c = run.target - constraint.value(q0);
+  run.previous_shifted = run.report.shifted;
+  run.previous_measure = run.report.gradient_measure;
   ConstrainedStep step;
   if (!direction(run, H, g0, c, step)) return false;
   if (!line_search(run, q0, e0, g0, c, w, step)) return false;
@@ -352,9 +376,28 @@ void ConstrainedNewtonSolver::Impl::record_step(ConstrainedRun& run, const Eigen
 bool ConstrainedNewtonSolver::Impl::escape(ConstrainedRun& run) {
   ConstrainedNewtonResult& result = run.result;
   if (result.status != SolveStatus::NonFinite) stability_test(run);
-  if (!result.converged() || result.stable || result.saddle_escapes >= run.max_saddle_escapes)
-    return false;
-  // A saddle: leave it downhill along negative curvature, then iterate on.
+  if (!result.converged() || result.stable) return false;
+  return leave_saddle(run);
+}
+
+// The iterates are converging to a saddle (kLinearRate, kNearCritical):
+// shifted steps converge to it only linearly, and when it is symmetric
+// (a flat shell about to buckle, its gradient without a component along
+// the buckling mode) they cannot leave it. The escape need not wait for
+// convergence (on manta_ray's deployment it came 4 iterations earlier).
+bool ConstrainedNewtonSolver::Impl::converging_to_saddle(const ConstrainedRun& run) const {
+  const double m = run.report.gradient_measure;
+  return !run.early_escape_tried && run.report.shifted && run.previous_shifted &&
+         m > kLinearRate * run.previous_measure && m < kNearCritical * run.start_measure &&
+         m > options.gradient_tolerance;
+}
+
+// Leaves the state downhill along negative curvature (escape_saddle) and
+// reports that as an iteration. False, the state unchanged, when there is
+// no negative curvature or the solve's escapes are used up.
+bool ConstrainedNewtonSolver::Impl::leave_saddle(ConstrainedRun& run) {
+  ConstrainedNewtonResult& result = run.result;
+  if (result.saddle_escapes >= run.max_saddle_escapes) return false;
   const Clock::time_point escape_start = Clock::now();
   const long factorizations_at_escape = factorizations();
   const Eigen::VectorXd q_saddle = objective.get();

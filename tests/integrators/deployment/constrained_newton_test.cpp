@@ -262,6 +262,38 @@ TEST_CASE("Constrained Newton leaves a symmetric saddle along negative curvature
   CHECK(cases == 2);
 }
 
+TEST_CASE("Constrained Newton leaves a saddle it converges to linearly before reaching it") {
+  // At A = 1 and w = 0 the shifted steps bring u - v to 0 linearly and
+  // never move w (its gradient is 0 there): they converge to the saddle.
+  Buckling objective;
+  objective.set(Eigen::Vector3d(1.3, 0.7, 0.0));
+  const AverageConstraint c(3, {0, 1}, {-1, 0}, 2, 0.0);
+  NewtonOptions options;
+  options.gradient_tolerance = 1e-12;
+  ConstrainedNewtonSolver solver(objective, c, options);
+  solver.max_saddle_escapes = 1;
+  double measure_before_escape = -1.0, last_measure = 0.0;
+  int shifted_before_escape = 0;
+  NewtonCallbacks callbacks;
+  callbacks.on_iteration = [&](const NewtonReport& report) {
+    if (measure_before_escape < 0.0 && objective.get()[2] != 0.0)
+      measure_before_escape = last_measure;
+    if (measure_before_escape < 0.0 && report.shifted) ++shifted_before_escape;
+    last_measure = report.gradient_measure;
+  };
+  const ConstrainedNewtonResult r = solver.solve(1.0, callbacks);
+  CAPTURE(r.reason);
+  REQUIRE(r.converged());
+  CHECK(r.stable);
+  CHECK(r.saddle_escapes == 1);
+  CHECK(objective.get()[2] == doctest::Approx(1.0).epsilon(1e-10));
+  // Left after a few linear steps, far above the tolerance.
+  CHECK(shifted_before_escape >= 2);
+  CHECK(measure_before_escape > 1e3 * options.gradient_tolerance);
+  REQUIRE(r.saddles_escaped.size() == 1);
+  CHECK(r.saddles_escaped[0].lowest_eigenvalue < 0.0);
+}
+
 TEST_CASE(
     "Constrained Newton: the path's second derivative from the tangent's factorization, H "
     "definite or not") {
