@@ -166,6 +166,7 @@ DeploymentSummary deployment_summary(const Deployment& d, const DeploymentResult
   ds.steps = result.steps.empty() ? 0 : result.steps.back().step;
   ds.failed_attempts = result.failed_attempts;
   ds.curvature_dropped = result.curvature_dropped;
+  ds.round_off_floor_steps = result.round_off_floor_steps;
   ds.iterations = result.iterations;
   ds.factorizations = result.factorizations;
   ds.start_average_angle = result.start_angle;

@@ -69,6 +69,7 @@ nlohmann::json summary_deployment_json(const DeploymentSummary& d) {
           {"steps", d.steps},
           {"failed_attempts", d.failed_attempts},
           {"curvature_dropped", d.curvature_dropped},
+          {"round_off_floor_steps", d.round_off_floor_steps},
           {"iterations", d.iterations},
           {"factorizations", d.factorizations},
           {"start_average_angle", d.start_average_angle},

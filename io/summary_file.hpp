@@ -47,7 +47,9 @@
 //                     steps (accepted steps after step 0, the start), failed_attempts (steps
 //                     retried with half the increment), curvature_dropped (step attempts that
 //                     started from the tangent's prediction, every curved one's energy
-//                     being higher), iterations (solver iterations or time steps, all steps),
+//                     being higher), round_off_floor_steps (accepted steps whose
+//                     gradient measure stagnated at its round-off floor within twice the
+//                     tolerance), iterations (solver iterations or time steps, all steps),
 //                     factorizations (the sparse factorizations of every attempt and of the
 //                     twin, where the solver counts them), start_average_angle,
 //                     target_average_angle (null for joint_angles), final_average_angle
@@ -110,6 +112,7 @@ struct DeploymentSummary {
   int steps = 0;
   int failed_attempts = 0;
   int curvature_dropped = 0;
+  int round_off_floor_steps = 0;
   long iterations = 0;
   long factorizations = 0;
   double start_average_angle = 0.0;

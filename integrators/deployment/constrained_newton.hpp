@@ -58,6 +58,9 @@ struct ConstrainedNewtonResult : SolveResult {
   int schur_iterations = 0;          // iterations stepped by the Schur complement
   int null_space_iterations = 0;     // by the null-space fallback
   int saddle_escapes = 0;            // moves off an unstable equilibrium (counted as iterations)
+  // Converged at the gradient's round-off floor, the measure stagnating
+  // within twice the tolerance (the reason says so).
+  bool at_round_off_floor = false;
 };
 
 // Bound to one objective and constraint (sizes fixed); keeps the two

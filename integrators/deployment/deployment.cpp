@@ -41,6 +41,7 @@ constexpr double kCurvatureStep = 1e-3;
 struct Attempt {
   SolveResult solve;
   double torque = 0.0;  // dE/dA or dE/dtheta
+  bool at_round_off_floor = false;  // ConstrainedNewtonResult's
 };
 
 struct Twin;
@@ -275,7 +276,7 @@ class Deployer {
     if (constrained_newton_ && options_.solver == DeploymentSolver::Newton) {
       const ConstrainedNewtonResult r =
           constrained_newton_->solve(average_target(s), newton_callbacks);
-      a = {r, r.multiplier};
+      a = {r, r.multiplier, r.at_round_off_floor};
     } else if (newton_) {
       a.solve = newton_->solve(newton_callbacks);
     } else if (constraint_) {
@@ -394,6 +395,7 @@ class Deployer {
       result_.saddles_escaped.push_back(saddle);
     }
     row.gradient_measure = a.solve.gradient_measure;
+    if (a.at_round_off_floor) ++result_.round_off_floor_steps;
     row.halvings = halvings;
     row.seconds = seconds;
     result_.steps.push_back(row);

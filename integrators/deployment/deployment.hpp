@@ -191,6 +191,9 @@ struct DeploymentResult : SolveResult {
   // had a higher energy there: after a snap-through, whose two sides no
   // smooth curve joins.
   int curvature_dropped = 0;
+  // Accepted steps whose equilibrium stopped at the gradient's round-off
+  // floor within twice the tolerance (ConstrainedNewtonResult).
+  int round_off_floor_steps = 0;
   // The step at which the loaded branch on the user's side was taken from
   // the unloaded twin (follow_unloaded_twin), -1 when none was.
   int branch_switch_step = -1;

@@ -36,6 +36,25 @@ class Quadratic : public Objective {
   Eigen::VectorXd f_, q_;
 };
 
+// The quadratic with a gradient that round-off spoils: every entry off by
+// +/- delta, its sign a fine-grained function of q, so that no iterate can
+// bring the gradient measure below about delta (its round-off floor).
+class NoisyQuadratic : public Quadratic {
+ public:
+  NoisyQuadratic(const Eigen::MatrixXd& K, const Eigen::VectorXd& f, double delta)
+      : Quadratic(K, f), delta_(delta) {}
+  Eigen::VectorXd gradient() const override {
+    Eigen::VectorXd g = Quadratic::gradient();
+    const Eigen::VectorXd q = get();
+    for (Eigen::Index i = 0; i < g.size(); ++i)
+      g[i] += std::sin(1e9 * q[i] + static_cast<double>(i)) > 0.0 ? delta_ : -delta_;
+    return g;
+  }
+
+ private:
+  double delta_;
+};
+
 // Two averaged unknowns u, v (A = (u + v) / 2) and w:
 //   E = (u - v)^2 + (w^2 - A)^2 + A^2.
 // For A > 0, w = 0 is a saddle (d2E/dw2 = -4A) and the minima are w = +/- sqrt(A),
@@ -292,6 +311,39 @@ TEST_CASE("Constrained Newton leaves a saddle it converges to linearly before re
   CHECK(measure_before_escape > 1e3 * options.gradient_tolerance);
   REQUIRE(r.saddles_escaped.size() == 1);
   CHECK(r.saddles_escaped[0].lowest_eigenvalue < 0.0);
+}
+
+TEST_CASE(
+    "Constrained Newton stops at a round-off floor within twice the tolerance, and fails above "
+    "it") {
+  std::mt19937 rng(5);
+  const int n = 7;
+  const Eigen::MatrixXd R = Eigen::MatrixXd::Random(n, n);
+  const Eigen::MatrixXd K = R * R.transpose() + Eigen::MatrixXd::Identity(n, n);
+  const AverageConstraint c(n, {1, 2, 4, 5}, {-1, 0, 0, 1}, 4, 0.0);
+  const Eigen::VectorXd f = 100.0 * random_vector(n, rng);
+  int cases = 0;
+  for (double delta : {0.7e-6, 5e-6}) {
+    CAPTURE(delta);
+    NoisyQuadratic objective(K, f, delta);
+    NewtonOptions options;  // gradient tolerance 1e-6
+    ConstrainedNewtonSolver solver(objective, c, options);
+    const ConstrainedNewtonResult r = solver.solve(0.3);
+    CAPTURE(r.reason);
+    CHECK(r.gradient_measure > options.gradient_tolerance);
+    if (delta < options.gradient_tolerance) {
+      CHECK(r.converged());
+      CHECK(r.at_round_off_floor);
+      CHECK(r.gradient_measure <= 2.0 * options.gradient_tolerance);
+      CHECK(r.reason.find("round-off floor") != std::string::npos);
+    } else {
+      CHECK(r.status == SolveStatus::LineSearchFailed);
+      CHECK_FALSE(r.at_round_off_floor);
+    }
+    CHECK(r.iterations < 20);
+    ++cases;
+  }
+  CHECK(cases == 2);
 }
 
 TEST_CASE(
