@@ -221,14 +221,13 @@ bool ConstrainedNewtonSolver::Impl::finished(ConstrainedRun& run) {
                         std::abs(residual) <= run.constraint_tolerance &&
                         check.gradient_measure <= kFloorFactor * options.gradient_tolerance;
   check.converged = check.converged || at_floor;
-  const bool done = iteration_finished(check, run.callbacks.stop,
-                                       options.max_iterations + run.iterations_at_escape,
-                                       run.result);
+  const bool done = iteration_finished(
+      check, run.callbacks.stop, options.max_iterations + run.iterations_at_escape, run.result);
   run.result.at_round_off_floor = at_floor && run.result.converged();
   if (run.result.at_round_off_floor)
     run.result.reason = "gradient measure " + scientific(check.gradient_measure) +
-                        " at its round-off floor, within twice the tolerance (" +
-                        check.stagnation + ")";
+                        " at its round-off floor, within twice the tolerance (" + check.stagnation +
+                        ")";
   return done;
 }
 

@@ -40,7 +40,7 @@ constexpr double kCurvatureStep = 1e-3;
 // The outcome of one solve, whichever solver ran it.
 struct Attempt {
   SolveResult solve;
-  double torque = 0.0;  // dE/dA or dE/dtheta
+  double torque = 0.0;              // dE/dA or dE/dtheta
   bool at_round_off_floor = false;  // ConstrainedNewtonResult's
 };
 
