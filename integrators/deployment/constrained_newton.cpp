@@ -59,7 +59,7 @@ struct ConstrainedRun {
   // The cap on the step's 2-norm: options.max_step, or with
   // options.grow_step_cap doubled after every capped step taken in full
   // and back to the length of the last step when the line search had to
-  // shorten it (step_cap_after).
+  // shorten it (grown_step_cap).
   double step_cap = 0.0;
   bool capped = false;  // the last step was scaled down to step_cap
   // The iteration before the last: its step was shifted, and the measure
@@ -75,17 +75,6 @@ struct ConstrainedStep {
   Eigen::VectorXd p;
   double tau = 0.0;
 };
-
-// The step cap after an accepted step of `taken` (2-norm), the fraction
-// `fraction` of the capped Newton step: doubled when the capped step was
-// taken in full (the quadratic model held that far: a linkage springing
-// back under a removed load, each full step of max_step lowering the
-// energy), else max_step or the length the line search found, whichever
-// is longer.
-double step_cap_after(const ConstrainedRun& run, double max_step, double taken, double fraction) {
-  if (fraction >= 1.0) return run.capped ? 2.0 * run.step_cap : run.step_cap;
-  return std::max(max_step, taken);
-}
 
 }  // namespace
 
@@ -357,8 +346,8 @@ bool ConstrainedNewtonSolver::Impl::line_search(ConstrainedRun& run, const Eigen
   }
   if (accepted.accepted) {
     if (options.grow_step_cap)
-      run.step_cap = step_cap_after(run, options.max_step, accepted.step_fraction * step.p.norm(),
-                                    accepted.step_fraction);
+      run.step_cap = grown_step_cap(run.step_cap, run.capped, options.max_step,
+                                    accepted.step_fraction * step.p.norm(), accepted.step_fraction);
     return true;
   }
   objective.set(q0);

@@ -1,5 +1,6 @@
 #include "integrators/newton/descent_step.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -12,7 +13,8 @@ DescentStepResult energy_descent_step(ObjectiveEvaluator& evaluator, CholeskySol
   Eigen::VectorXd p = -factor.solve(g0);
   const double length = p.norm();
   if (!std::isfinite(length)) return {};
-  if (length > options.max_step) p *= options.max_step / length;
+  const bool capped = length > options.max_step;
+  if (capped) p *= options.max_step / length;
   const double slope = g0.dot(p);  // < 0: K is positive definite
   if (!(slope < 0.0)) return {};
 
@@ -26,7 +28,14 @@ DescentStepResult energy_descent_step(ObjectiveEvaluator& evaluator, CholeskySol
            (w.array() * g.array()).matrix().norm() < (w.array() * g0.array()).matrix().norm();
   };
   if (options.follow_path) energy.path = objective_path(evaluator, q0, p, options.newton_step);
-  return backtrack_on_energy(evaluator, q0, e0, p, energy, options);
+  DescentStepResult out = backtrack_on_energy(evaluator, q0, e0, p, energy, options);
+  out.capped = capped;
+  return out;
+}
+
+double grown_step_cap(double cap, bool capped, double max_step, double taken, double fraction) {
+  if (fraction >= 1.0) return capped ? 2.0 * cap : cap;
+  return std::max(max_step, taken);
 }
 
 std::function<Eigen::VectorXd(double)> objective_path(ObjectiveEvaluator& evaluator,

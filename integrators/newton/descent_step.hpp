@@ -54,11 +54,21 @@ struct DescentStepOptions {
 
 struct DescentStepResult {
   bool accepted = false;
+  bool capped = false;              // p was scaled down to max_step
   double step_fraction = 0.0;       // alpha of the accepted step q0 + alpha p
   double energy = 0.0;              // E(q0 + alpha p) when accepted
   int trials = 0;                   // energy evaluations attempted
   int rejected_configurations = 0;  // trial points that were invalid or NaN
 };
+
+// The step cap after an accepted step (NewtonOptions::grow_step_cap) of
+// `taken` (2-norm), the fraction `fraction` of the Newton step capped at
+// `cap` (`capped`: it was longer): doubled when the capped step was taken
+// in full (the quadratic model held that far: a linkage springing back
+// under a removed load, or descending from a saddle, each full step of
+// max_step lowering the energy), else max_step or the length the line
+// search found, whichever is longer.
+double grown_step_cap(double cap, bool capped, double max_step, double taken, double fraction);
 
 // From q0 (where the objective is, with energy e0 and gradient g0), takes
 // q0 + alpha p with p = -K^-1 g0 (K factorized in `factor`), the largest

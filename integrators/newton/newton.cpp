@@ -33,6 +33,9 @@ struct NewtonRun {
   // Iterations done when the last saddle was left: the iteration limit
   // counts from there (the descent from a saddle is a solve of its own).
   long iterations_at_escape = 0;
+  // The cap on the energy line search's step: NewtonOptions::max_step, or
+  // with grow_step_cap grown_step_cap's (descent_step.hpp).
+  double step_cap = 0.0;
 };
 
 }  // namespace
@@ -154,6 +157,7 @@ void classify_failure(int flag, const ObjectiveEvaluator& evaluator, const Newto
 NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
   const Clock::time_point start = Clock::now();
   NewtonRun run(callbacks);
+  run.step_cap = options_.max_step;
   if (!impl_) {  // no unknowns: trivially in equilibrium
     set_no_unknowns(objective_.energy(), run.result);
     return run.result;
@@ -261,7 +265,7 @@ bool NewtonSolver::Impl::energy_step(const Eigen::VectorXd& q0, NewtonRun& run, 
   evaluator.move_to(q0);
   const Eigen::VectorXd g0 = evaluator.gradient();
   DescentStepOptions descent;
-  descent.max_step = options.max_step;
+  descent.max_step = run.step_cap;
   descent.follow_path = options.follow_path;
   descent.newton_step = !system.last_factorization().shifted;
   const DescentStepResult step =
@@ -274,6 +278,11 @@ bool NewtonSolver::Impl::energy_step(const Eigen::VectorXd& q0, NewtonRun& run, 
   }
   as_eigen(u.get()) = evaluator.position();
   energy = step.energy;
+  if (options.grow_step_cap) {
+    const double taken = (evaluator.position() - q0).norm();
+    run.step_cap =
+        grown_step_cap(run.step_cap, step.capped, options.max_step, taken, step.step_fraction);
+  }
   return true;
 }
 

@@ -15,7 +15,9 @@
 //     space; outside it either set() throws std::domain_error or the
 //     values are NaN, to test the solvers' failure handling;
 //   - Slope: a convex energy unbounded below (no equilibrium: a load that
-//     nothing holds), to test that the solvers see divergence.
+//     nothing holds), to test that the solvers see divergence;
+//   - Quadratic: 1/2 q'Kq - f.q, whose Newton step is exact (for the step
+//     caps, the constrained solves' Schur complement).
 #pragma once
 
 #include <cmath>
@@ -202,6 +204,25 @@ class Slope : public Objective {
   double f_;
   Eigen::VectorXd x_;
   Eigen::SparseMatrix<double> hessian_;
+};
+
+// E = 1/2 q'Kq - f.q with a dense symmetric K (stored sparse).
+class Quadratic : public Objective {
+ public:
+  Quadratic(const Eigen::MatrixXd& K, const Eigen::VectorXd& f)
+      : K_(K.sparseView()), f_(f), q_(Eigen::VectorXd::Zero(f.size())) {}
+  Eigen::Index size() const override { return f_.size(); }
+  Eigen::VectorXd get() const override { return q_; }
+  void set(const Eigen::VectorXd& q) override { q_ = q; }
+  double energy() const override { return 0.5 * q_.dot(K_ * q_) - f_.dot(q_); }
+  Eigen::VectorXd gradient() const override { return K_ * q_ - f_; }
+  const Eigen::SparseMatrix<double>& hessian() override { return K_; }
+  Eigen::VectorXd gradient_weights() const override { return Eigen::VectorXd::Ones(size()); }
+  Eigen::VectorXd mass() const override { return Eigen::VectorXd::Ones(size()); }
+
+ private:
+  Eigen::SparseMatrix<double> K_;
+  Eigen::VectorXd f_, q_;
 };
 
 }  // namespace xshell::test

@@ -12,29 +12,11 @@
 #include "integrators/deployment/average_constraint.hpp"
 #include "integrators/deployment/deployment_fixtures.hpp"
 #include "integrators/deployment/path_predictor.hpp"
+#include "integrators/toy_objectives.hpp"
 
 namespace xshell::test {
 
 namespace {
-
-// E = 1/2 q'Kq - f.q with a dense symmetric K (stored sparse).
-class Quadratic : public Objective {
- public:
-  Quadratic(const Eigen::MatrixXd& K, const Eigen::VectorXd& f)
-      : K_(K.sparseView()), f_(f), q_(Eigen::VectorXd::Zero(f.size())) {}
-  Eigen::Index size() const override { return f_.size(); }
-  Eigen::VectorXd get() const override { return q_; }
-  void set(const Eigen::VectorXd& q) override { q_ = q; }
-  double energy() const override { return 0.5 * q_.dot(K_ * q_) - f_.dot(q_); }
-  Eigen::VectorXd gradient() const override { return K_ * q_ - f_; }
-  const Eigen::SparseMatrix<double>& hessian() override { return K_; }
-  Eigen::VectorXd gradient_weights() const override { return Eigen::VectorXd::Ones(size()); }
-  Eigen::VectorXd mass() const override { return Eigen::VectorXd::Ones(size()); }
-
- private:
-  Eigen::SparseMatrix<double> K_;
-  Eigen::VectorXd f_, q_;
-};
 
 // The quadratic with a gradient that round-off spoils: every entry off by
 // +/- delta, its sign a fine-grained function of q, so that no iterate can

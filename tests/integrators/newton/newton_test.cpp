@@ -123,6 +123,44 @@ TEST_CASE("Newton on the offset (rebasing) objective") {
   }
 }
 
+TEST_CASE("Newton reaches a solution far beyond max_step in capped steps of doubling length") {
+  const int n = 6;
+  Eigen::MatrixXd K = Eigen::MatrixXd::Identity(n, n) * 2.0;
+  K(0, 1) = K(1, 0) = 0.5;
+  Eigen::VectorXd f = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+  f *= 1000.0 / K.ldlt().solve(f).norm();  // the solution 1000 steps of max_step away
+  const Eigen::VectorXd solution = K.ldlt().solve(f);
+  for (bool grow : {true, false}) {
+    CAPTURE(grow);
+    Quadratic objective(K, f);
+    NewtonOptions options = tight();
+    options.max_step = 1.0;
+    options.grow_step_cap = grow;
+    std::vector<double> steps;  // 2-norm of each step
+    Eigen::VectorXd last = objective.get();
+    NewtonCallbacks callbacks;
+    callbacks.on_iteration = [&](const NewtonReport& report) {
+      if (report.iteration > 0) steps.push_back((objective.get() - last).norm());
+      last = objective.get();
+    };
+    const NewtonResult r = solve_newton(objective, options, callbacks);
+    CAPTURE(r.reason);
+    if (!grow) {  // 1000 steps of max_step needed, more than the iteration limit
+      CHECK(r.status == SolveStatus::IterationLimit);
+      REQUIRE(steps.size() >= 2);
+      CHECK(steps[1] == doctest::Approx(1.0).epsilon(1e-12));
+      continue;
+    }
+    REQUIRE(r.converged());
+    CHECK(r.iterations <= 13);  // about log2(1000) = 10
+    REQUIRE(steps.size() >= 3);
+    CHECK(steps[0] == doctest::Approx(1.0).epsilon(1e-12));
+    CHECK(steps[1] == doctest::Approx(2.0).epsilon(1e-12));
+    CHECK(steps[2] == doctest::Approx(4.0).epsilon(1e-12));
+    CHECK((objective.get() - solution).norm() < 1e-9 * solution.norm());
+  }
+}
+
 TEST_CASE("Newton from a converged start does no iteration") {
   StencilObjective chain = make_chain();
   REQUIRE(solve_newton(chain, tight()).converged());
