@@ -22,7 +22,9 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
+#include "integrators/newton/newton.hpp"
 #include "stencil_objective.hpp"
 
 namespace xshell::test {
@@ -224,5 +226,18 @@ class Quadratic : public Objective {
   Eigen::SparseMatrix<double> K_;
   Eigen::VectorXd f_, q_;
 };
+
+// Callbacks that push the 2-norm of every step a solver takes on
+// `objective` into `steps`.
+inline NewtonCallbacks recording_step_lengths(const Objective& objective,
+                                              std::vector<double>& steps) {
+  NewtonCallbacks callbacks;
+  callbacks.on_iteration = [&objective, &steps,
+                            last = objective.get()](const NewtonReport& report) mutable {
+    if (report.iteration > 0) steps.push_back((objective.get() - last).norm());
+    last = objective.get();
+  };
+  return callbacks;
+}
 
 }  // namespace xshell::test

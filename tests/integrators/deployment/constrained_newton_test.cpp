@@ -18,6 +18,17 @@ namespace xshell::test {
 
 namespace {
 
+// R R^T + I for a random R (n x n): symmetric positive definite.
+Eigen::MatrixXd random_stiffness(int n) {
+  const Eigen::MatrixXd R = Eigen::MatrixXd::Random(n, n);
+  return R * R.transpose() + Eigen::MatrixXd::Identity(n, n);
+}
+
+// The average of unknowns 1, 2, 4 and 5 of n >= 6 (a tree 1-2, 1-4, 4-5).
+AverageConstraint average_of_four(int n) {
+  return AverageConstraint(n, {1, 2, 4, 5}, {-1, 0, 0, 1}, 4, 0.0);
+}
+
 // The quadratic with a gradient that round-off spoils: every entry off by
 // +/- delta, its sign a fine-grained function of q, so that no iterate can
 // bring the gradient measure below about delta (its round-off floor).
@@ -138,11 +149,10 @@ TEST_CASE(
   for (bool definite : {true, false}) {
     CAPTURE(definite);
     const int n = 7;
-    Eigen::MatrixXd R = Eigen::MatrixXd::Random(n, n);
-    Eigen::MatrixXd K = R * R.transpose() + Eigen::MatrixXd::Identity(n, n);
+    Eigen::MatrixXd K = random_stiffness(n);
     // Indefinite along the averaged direction only: K - c a a^T stays
     // positive definite on the constraint's plane (a.q = const).
-    const AverageConstraint c(n, {1, 2, 4, 5}, {-1, 0, 0, 1}, 4, 0.0);
+    const AverageConstraint c = average_of_four(n);
     if (!definite) K -= 60.0 * c.coefficients() * c.coefficients().transpose() * 16.0;
     const Eigen::VectorXd f = random_vector(n, rng);
     Quadratic objective(K, f);
@@ -185,9 +195,8 @@ TEST_CASE(
     "length") {
   std::mt19937 rng(11);
   const int n = 7;
-  const Eigen::MatrixXd R = Eigen::MatrixXd::Random(n, n);
-  const Eigen::MatrixXd K = R * R.transpose() + Eigen::MatrixXd::Identity(n, n);
-  const AverageConstraint c(n, {1, 2, 4, 5}, {-1, 0, 0, 1}, 4, 0.0);
+  const Eigen::MatrixXd K = random_stiffness(n);
+  const AverageConstraint c = average_of_four(n);
   Eigen::VectorXd f = random_vector(n, rng);
   const auto [q, tau] = kkt(K, f, c.coefficients(), 0.3);
   // The solution is linear in (f, A): scaled, it lies 1000 steps of
@@ -202,13 +211,7 @@ TEST_CASE(
   options.grow_step_cap = true;
   ConstrainedNewtonSolver solver(objective, c, options);
   std::vector<double> steps;  // 2-norm of each step
-  Eigen::VectorXd last = objective.get();
-  NewtonCallbacks callbacks;
-  callbacks.on_iteration = [&](const NewtonReport& report) {
-    if (report.iteration > 0) steps.push_back((objective.get() - last).norm());
-    last = objective.get();
-  };
-  const ConstrainedNewtonResult r = solver.solve(target, callbacks);
+  const ConstrainedNewtonResult r = solver.solve(target, recording_step_lengths(objective, steps));
   CAPTURE(r.reason);
   REQUIRE(r.converged());
   // A fixed cap would take 1000 steps; doubling it, about log2(1000) = 10.
@@ -300,9 +303,8 @@ TEST_CASE(
     "it") {
   std::mt19937 rng(5);
   const int n = 7;
-  const Eigen::MatrixXd R = Eigen::MatrixXd::Random(n, n);
-  const Eigen::MatrixXd K = R * R.transpose() + Eigen::MatrixXd::Identity(n, n);
-  const AverageConstraint c(n, {1, 2, 4, 5}, {-1, 0, 0, 1}, 4, 0.0);
+  const Eigen::MatrixXd K = random_stiffness(n);
+  const AverageConstraint c = average_of_four(n);
   const Eigen::VectorXd f = 100.0 * random_vector(n, rng);
   int cases = 0;
   for (double delta : {0.7e-6, 5e-6}) {

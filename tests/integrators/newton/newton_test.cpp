@@ -137,13 +137,8 @@ TEST_CASE("Newton reaches a solution far beyond max_step in capped steps of doub
     options.max_step = 1.0;
     options.grow_step_cap = grow;
     std::vector<double> steps;  // 2-norm of each step
-    Eigen::VectorXd last = objective.get();
-    NewtonCallbacks callbacks;
-    callbacks.on_iteration = [&](const NewtonReport& report) {
-      if (report.iteration > 0) steps.push_back((objective.get() - last).norm());
-      last = objective.get();
-    };
-    const NewtonResult r = solve_newton(objective, options, callbacks);
+    const NewtonResult r =
+        solve_newton(objective, options, recording_step_lengths(objective, steps));
     CAPTURE(r.reason);
     if (!grow) {  // 1000 steps of max_step needed, more than the iteration limit
       CHECK(r.status == SolveStatus::IterationLimit);
