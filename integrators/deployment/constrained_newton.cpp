@@ -26,7 +26,7 @@ constexpr int kStalledIterations = 5;
 // and be halved.
 constexpr double kFloorFactor = 2.0;
 
-// Converging to a saddle (docs/model.md 9.3): two shifted steps in a row,
+// Converging to a saddle (docs/model.md 9.5): two shifted steps in a row,
 // the last one lowering the measure by less than kLinearRate (a shifted
 // Newton step converges linearly), to below kNearCritical of the solve's
 // start.
