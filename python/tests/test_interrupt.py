@@ -15,13 +15,15 @@ from conftest import SAMPLES
 
 
 def long_run():
-    """Kinetic damping to a tolerance it does not reach: about 10 s of
-    iterations (a few seconds more on a loaded machine), so that a test
-    whose interrupt does not stop it fails in seconds, not by a timeout."""
+    """Kinetic damping to a tolerance below its round-off floor: about 10 s
+    of iterations before its stagnation test ends it (a few seconds more on
+    a loaded machine; at 8 subdivisions, 1.7 s), so that a test whose
+    interrupt does not stop it fails in seconds, not by a timeout."""
     with open(SAMPLES / "grid_gravity.json") as f:
         cfg = json.load(f)
     cfg["linkage"] = str(SAMPLES / cfg["linkage"])
-    cfg["solver"] = {"method": "kinetic-damping", "gradient_tolerance": 1e-13, "max_steps": 30000}
+    cfg["subdivisions"] = 16
+    cfg["solver"] = {"method": "kinetic-damping", "gradient_tolerance": 1e-13, "max_steps": 100000}
     cfg["output"] = {"every": 1000}
     return cfg
 
