@@ -90,6 +90,7 @@ class Deployer {
       newton_ = std::make_unique<NewtonSolver>(objective_, options_.newton);
     const std::vector<bool> frame_free = frame_free_unknowns(linkage);
     for (int r : problem.free_indices()) comparable_.push_back(frame_free[r]);
+    chart_free_ = comparable_;
     // Their omegas are compared in one chart (joint_charts.hpp).
     rotations_ = free_rotations(problem);
     for (const FreeRotation& r : rotations_)
@@ -210,8 +211,10 @@ class Deployer {
 
   // The curved predictions from q (path_predictor.hpp), none before the
   // last two equilibria lie on one path: the cubic (Hermite) through them,
-  // then, when the path's second derivative could be found, the Taylor
-  // cubic and the Taylor polynomial. (From the Taylor polynomial alone, at
+  // then, when the path's second derivative could be found (kept at q for
+  // the next step), the Taylor cubic, the Hermite polynomial with it (a
+  // quintic once the equilibrium before has its own) and the Taylor
+  // polynomial. (From the Taylor polynomial alone, at
   // the first step and after a jump, the benchmark's deployments took more
   // iterations: darth_vader 123 against 105.)
   std::vector<Eigen::VectorXd> curved_predictions(const Eigen::VectorXd& q,
@@ -224,7 +227,10 @@ class Deployer {
         linear + path_curvature_step(previous, path_[1], t, change, comparable_)};
     const Eigen::VectorXd k = path_second_derivative(q, t);
     if (k.size() == q.size()) {
+      path_.back().curvature = k;
       out.push_back(linear + taylor_cubic_step(previous, path_[1], t, k, change, comparable_));
+      out.push_back(
+          linear + hermite_taylor_step(previous, path_[1], t, k, change, comparable_, chart_free_));
       out.push_back(linear + 0.5 * change * change * k);
     }
     for (Eigen::VectorXd& start : out) constraint_->project(start, target);
@@ -452,6 +458,7 @@ class Deployer {
   std::unique_ptr<Twin> twin_;    // while the branch choice follows it
   std::vector<PathPoint> path_;   // the last (at most two) equilibria of the path
   std::vector<bool> comparable_;  // per free unknown: frame_free_unknowns(), and rotations_
+  std::vector<bool> chart_free_;  // per free unknown: frame_free_unknowns()
   std::vector<FreeRotation> rotations_;
 };
 

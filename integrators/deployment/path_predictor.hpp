@@ -35,6 +35,8 @@ struct PathPoint {
   // The rotation joints' frames there (joint_charts.hpp), which say what
   // its omegas mean.
   std::vector<Eigen::Matrix3d> frames = {};
+  // d^2q/dA^2 there, once computed (empty until then), in its own charts.
+  Eigen::VectorXd curvature = {};
 };
 
 // The terms beyond q1 + h t1 above (cubic when previous.tangent has q's
@@ -51,6 +53,18 @@ Eigen::VectorXd path_curvature_step(const PathPoint& previous, const PathPoint& 
 Eigen::VectorXd taylor_cubic_step(const PathPoint& previous, const PathPoint& last,
                                   const Eigen::VectorXd& tangent, const Eigen::VectorXd& curvature,
                                   double h, const std::vector<bool>& comparable);
+
+// The Hermite polynomial that has q1, t1, k1 at q1 and q0, t0 (and k0 =
+// previous.curvature when it has q's size) at q0: a quartic
+// (error O(h^5)) or a quintic (error O(h^6)); its terms beyond q1 + h t1.
+// Unknowns not marked in `comparable` get (h^2/2) k1 only; those marked in
+// `comparable` but not in `curvature_comparable` (whose second derivatives
+// at q0 and q1 are in different charts) the quartic's terms.
+Eigen::VectorXd hermite_taylor_step(const PathPoint& previous, const PathPoint& last,
+                                    const Eigen::VectorXd& tangent,
+                                    const Eigen::VectorXd& curvature, double h,
+                                    const std::vector<bool>& comparable,
+                                    const std::vector<bool>& curvature_comparable);
 
 // D3E[t, t] at q by the central second difference of the gradient along t,
 //   (g(q + eps t) - 2 g(q) + g(q - eps t)) / eps^2,

@@ -41,6 +41,22 @@ double taylor_error(double a, double h, bool cubic) {
   return (predicted - path(a + h)).cwiseAbs().maxCoeff();
 }
 
+// Largest error of the Hermite polynomial's prediction of path(a + h) with
+// q, t, q'' at a and q, t (and q'' when `quintic`) at a - h.
+double hermite_error(double a, double h, bool quintic) {
+  const PathPoint previous{path(a - h),
+                           a - h,
+                           tangent(a - h),
+                           {},
+                           quintic ? second_derivative(a - h) : Eigen::VectorXd()};
+  const PathPoint last{path(a), a};
+  const std::vector<bool> all(4, true);
+  const Eigen::VectorXd predicted =
+      last.q + h * tangent(a) +
+      hermite_taylor_step(previous, last, tangent(a), second_derivative(a), h, all, all);
+  return (predicted - path(a + h)).cwiseAbs().maxCoeff();
+}
+
 // Largest error of the prediction of path(a + h) from a and a - h (with
 // the tangent at a - h too when `cubic`).
 double error(double a, double h, bool curved, bool cubic = false) {
@@ -138,6 +154,62 @@ TEST_CASE("The Taylor polynomial's error falls as h^3, the Taylor cubic's as h^4
   const Eigen::VectorXd still =
       taylor_cubic_step(last, last, cubic_tangent(s), cubic_curvature(s), h, {true, true, true});
   CHECK((still - 0.5 * h * h * cubic_curvature(s)).norm() <= 1e-15);
+}
+
+TEST_CASE(
+    "With the second derivatives the Hermite quartic's error falls as h^5, the quintic's as h^6") {
+  const double a = 0.7;
+  int halvings = 0;
+  for (double h = 0.2; h > 0.03; h /= 2) {
+    CAPTURE(h);
+    const double quartic = hermite_error(a, h, false) / hermite_error(a, h / 2, false);
+    const double quintic = hermite_error(a, h, true) / hermite_error(a, h / 2, true);
+    CHECK(quartic == doctest::Approx(32.0).epsilon(0.15));
+    CHECK(quintic == doctest::Approx(64.0).epsilon(0.15));
+    CHECK(hermite_error(a, h, false) < 0.5 * taylor_error(a, h, true));
+    // Higher order pays once h is small against the path's scale (at
+    // h = 0.2 this path's sixth derivative still outweighs its fifth).
+    if (h < 0.15) CHECK(hermite_error(a, h, true) < 0.5 * hermite_error(a, h, false));
+    ++halvings;
+  }
+  CHECK(halvings == 3);
+  // Exact on a quintic path (a longer step than the last one), on the
+  // unknowns whose second derivatives compare; the quartic's terms where
+  // only values and tangents compare, the Taylor term alone elsewhere.
+  const auto coefficients = Eigen::Vector<double, 6>(1.0, -2.0, 3.0, -0.5, 0.8, -1.1);
+  const auto quintic = [&](double s, int derivative) {
+    double value = 0.0;
+    for (int n = derivative; n < 6; ++n) {
+      double factor = 1.0;
+      for (int m = 0; m < derivative; ++m) factor *= n - m;
+      value += coefficients[n] * factor * std::pow(s, n - derivative);
+    }
+    return value;
+  };
+  const auto point = [&](double s, int derivative) {
+    return Eigen::Vector4d(quintic(s, derivative), quintic(s, derivative), quintic(s, derivative),
+                           derivative == 0   ? s
+                           : derivative == 1 ? 1.0
+                                             : 0.0);
+  };
+  const double s = 0.4, h0 = 0.2, h = 0.3;
+  const PathPoint previous{point(s - h0, 0), s - h0, point(s - h0, 1), {}, point(s - h0, 2)};
+  const PathPoint last{point(s, 0), s};
+  const Eigen::VectorXd step =
+      hermite_taylor_step(previous, last, point(s, 1), point(s, 2), h, {true, true, false, true},
+                          {true, false, false, true});
+  const Eigen::VectorXd predicted = last.q + h * point(s, 1) + step;
+  CHECK(std::abs(predicted[0] - quintic(s + h, 0)) <= 1e-13);
+  CHECK(std::abs(predicted[3] - (s + h)) <= 1e-15);  // on a . q = A + h
+  // Index 1: the quartic through the same data, off by the quintic's term.
+  CHECK(std::abs(predicted[1] - quintic(s + h, 0)) > 1e-3);
+  PathPoint without = previous;
+  without.curvature.resize(0);
+  const Eigen::VectorXd quartic =
+      hermite_taylor_step(without, last, point(s, 1), point(s, 2), h, {true, true, false, true},
+                          {true, true, false, true});
+  CHECK(std::abs(step[1] - quartic[1]) <= 1e-14);
+  CHECK(step[2] == doctest::Approx(0.5 * h * h * point(s, 2)[2]).epsilon(1e-15));
 }
 
 TEST_CASE("The gradient's second difference along t converges as eps^2 to D3E[t, t]") {
