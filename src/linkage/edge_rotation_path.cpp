@@ -1,12 +1,21 @@
 #include "edge_rotation_path.hpp"
 
-#include <array>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
 
 #include "turned_edge.hpp"
 
 namespace xshell {
 
 namespace {
+
+// The largest angle (radians) by which a step along the path may turn an
+// edge or its material frame: beyond a quarter turn no Newton step means
+// anything, and a mechanism whose energy barely changes (a rod swinging
+// free about its joint) would be spun round and round by the expansion.
+constexpr double kLargestTurn = 0.5 * M_PI;
 
 // Spreads the gap left at the end of a run (its nodes first..last, placed
 // by summing edges from node first - 1) along it in proportion to arc length.
@@ -51,24 +60,45 @@ void EdgeRotationPath::start(const LinkageProblem& problem, const Eigen::VectorX
   const RodLinkage& linkage = problem.linkage();
   start_nodes_.resize(linkage.num_segments());
   for (int s = 0; s < linkage.num_segments(); ++s) start_nodes_[s] = linkage.segment(s).nodes();
+  start_velocities(problem);
   if (place_joints_) joints_.start(problem);
 }
 
+void EdgeRotationPath::start_velocities(const LinkageProblem& problem) {
+  const RodLinkage& linkage = problem.linkage();
+  Eigen::VectorXd reduced = Eigen::VectorXd::Zero(linkage.num_dofs());
+  for (int k = 0; k < problem.num_free(); ++k) reduced[problem.free_indices()[k]] = p_[k];
+  start_velocities_.resize(linkage.num_segments());
+  twist_rates_.resize(linkage.num_segments());
+  double fastest = 0.0;  // the largest rate at which an edge turns (radians per unit alpha)
+  for (int s = 0; s < linkage.num_segments(); ++s) {
+    const ElasticRod& rod = linkage.segment(s);
+    const Eigen::VectorXd v = linkage.full_velocity(s, reduced);
+    start_velocities_[s].resize(rod.num_nodes());
+    for (int i = 0; i < rod.num_nodes(); ++i)
+      start_velocities_[s][i] = v.segment<3>(ElasticRod::node_dof(i));
+    twist_rates_[s].resize(rod.num_edges());
+    for (int j = 0; j < rod.num_edges(); ++j) {
+      twist_rates_[s][j] = v[rod.theta_dof(j)];
+      const Eigen::Vector3d e = start_nodes_[s][j + 1] - start_nodes_[s][j];
+      const Eigen::Vector3d de = start_velocities_[s][j + 1] - start_velocities_[s][j];
+      const double turn = e.cross(de).norm() / e.squaredNorm();
+      fastest = std::max({fastest, turn, std::abs(twist_rates_[s][j])});
+    }
+  }
+  longest_ = fastest > 0.0 ? kLargestTurn / fastest : std::numeric_limits<double>::infinity();
+}
+
 Eigen::VectorXd EdgeRotationPath::point(LinkageProblem& problem, double alpha) const {
+  if (alpha > longest_)
+    throw std::domain_error("the step turns an edge by more than a quarter turn");
   Eigen::VectorXd q = q0_ + alpha * p_;
-  std::vector<Eigen::Vector3d> shifts;
   // Beyond the full step (the expansion) the joints take the straight step.
-  if (place_joints_ && alpha <= 1.0) shifts = joints_.place(q);
+  if (place_joints_ && alpha <= 1.0) joints_.place(q);
   problem.set_free_dofs(q);
   std::vector<Eigen::Vector3d> nodes;
-  const LinkageTopology& topology = problem.linkage().topology();
   for (int s = 0; s < problem.linkage().num_segments(); ++s) {
-    std::array<Eigen::Vector3d, 2> shift{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
-    if (!shifts.empty())
-      for (int side = 0; side < 2; ++side)
-        if (topology.segments[s].joint[side] >= 0)
-          shift[side] = shifts[topology.segments[s].joint[side]];
-    turn_segment(s, problem.linkage().segment(s).nodes(), shift, nodes);
+    turn_segment(s, alpha, problem.linkage().segment(s).nodes(), nodes);
     for (int i = 0; i < static_cast<int>(nodes.size()); ++i) {
       const Eigen::Vector3i& unknowns = node_unknowns_[s][i];
       if (unknowns[0] >= 0)
@@ -78,26 +108,27 @@ Eigen::VectorXd EdgeRotationPath::point(LinkageProblem& problem, double alpha) c
   return q;
 }
 
-void EdgeRotationPath::turn_segment(int s, const std::vector<Eigen::Vector3d>& placed,
-                                    const std::array<Eigen::Vector3d, 2>& joint_shift,
+void EdgeRotationPath::turn_segment(int s, double alpha, const std::vector<Eigen::Vector3d>& placed,
                                     std::vector<Eigen::Vector3d>& nodes) const {
   const std::vector<Eigen::Vector3d>& start = start_nodes_[s];
+  const std::vector<Eigen::Vector3d>& velocity = start_velocities_[s];
   const std::vector<Eigen::Vector3i>& unknowns = node_unknowns_[s];
   const int n = static_cast<int>(placed.size());
   nodes = placed;
   auto is_free = [&](int i) { return unknowns[i][0] >= 0; };
-  // Where the straight step puts node i: a joint's terminal nodes (the
-  // first two, the last two) are placed with their joint, shifted.
+  // Where the straight step puts node i to first order: a free node on the
+  // line; a node that the joints or supports place, by its velocity at
+  // alpha = 0 (a joint turns its terminal nodes on arcs, whose second-order
+  // part would otherwise lengthen or shorten the free edge next to them).
   auto straight = [&](int i) -> Eigen::Vector3d {
     if (is_free(i)) return placed[i];
-    if (i <= 1) return placed[i] - joint_shift[0];
-    if (i >= n - 2) return placed[i] - joint_shift[1];
-    return placed[i];
+    return start[i] + alpha * velocity[i];
   };
   // Edge i -> i + 1 after the step.
   auto edge = [&](int i) {
     return turned_edge(start[i + 1] - start[i],
-                       (straight(i + 1) - straight(i)) - (start[i + 1] - start[i]));
+                       (straight(i + 1) - straight(i)) - (start[i + 1] - start[i]),
+                       alpha * twist_rates_[s][i]);
   };
   for (int a = 0; a < n; ++a) {
     if (!is_free(a)) continue;

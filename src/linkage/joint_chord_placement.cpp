@@ -11,7 +11,6 @@ JointChordPlacement::JointChordPlacement(const LinkageProblem& problem) {
   const LinkageTopology& topology = linkage.topology();
   // Points: every joint, then the free ends that the supports hold.
   std::vector<int> point_of_vertex(topology.valence.size(), -1);
-  num_joints_ = linkage.num_joints();
   for (int j = 0; j < linkage.num_joints(); ++j) {
     Point point;
     point.vertex = topology.joints[j].vertex;
@@ -82,9 +81,8 @@ Eigen::Vector3d JointChordPlacement::straight(const Point& point, const Eigen::V
   return x;
 }
 
-std::vector<Eigen::Vector3d> JointChordPlacement::place(Eigen::VectorXd& q) const {
-  std::vector<Eigen::Vector3d> shifts(num_joints_, Eigen::Vector3d::Zero());
-  if (!active()) return shifts;
+void JointChordPlacement::place(Eigen::VectorXd& q) const {
+  if (!active()) return;
   std::vector<Eigen::Vector3d> line(points_.size());
   for (std::size_t i = 0; i < points_.size(); ++i) line[i] = straight(points_[i], q);
   const int n = static_cast<int>(free_joints_.size());
@@ -106,10 +104,8 @@ std::vector<Eigen::Vector3d> JointChordPlacement::place(Eigen::VectorXd& q) cons
   const Eigen::MatrixXd x = normal_matrix_.solve(rhs);
   for (int k = 0; k < n; ++k) {
     const int i = free_joints_[k];
-    shifts[i] = x.row(k).transpose() - line[i];
     for (int c = 0; c < 3; ++c) q[points_[i].unknowns[c]] = x(k, c);
   }
-  return shifts;
 }
 
 }  // namespace xshell

@@ -35,9 +35,8 @@ class JointChordPlacement {
   // Records the joints' and held ends' positions at the start q0.
   void start(const LinkageProblem& problem);
   // Replaces the free joints' positions in q (free unknowns on the straight
-  // step from q0) by the fit of the turned chords; returns how far each
-  // joint moved from the straight step (zero for the held ones).
-  std::vector<Eigen::Vector3d> place(Eigen::VectorXd& q) const;
+  // step from q0) by the fit of the turned chords.
+  void place(Eigen::VectorXd& q) const;
 
  private:
   struct Point {
@@ -56,8 +55,7 @@ class JointChordPlacement {
   // The fit's normal equations (the same for every coordinate).
   void factorize_normal_matrix();
 
-  std::vector<Point> points_;  // the joints (in order), then the held ends
-  int num_joints_ = 0;
+  std::vector<Point> points_;     // the joints (in order), then the held ends
   std::vector<int> free_joints_;  // points_ index of each free joint
   std::vector<Chord> chords_;
   double pull_ = 0.0;  // weight of the pull towards the straight positions

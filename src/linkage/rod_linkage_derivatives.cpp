@@ -12,7 +12,10 @@
 // plain, one-off forms; the statics problem assembles through
 // LinkageAssembly (linkage_assembly.hpp), which computes the same sums with
 // a precomputed pattern, in parallel.
+#include <array>
+
 #include "linkage_assembly.hpp"
+#include "math/dual1.hpp"
 #include "rod_linkage.hpp"
 
 namespace xshell {
@@ -100,7 +103,32 @@ Eigen::SparseMatrix<double> RodLinkage::hessian(const std::vector<Eigen::VectorX
 }
 
 Eigen::VectorXd RodLinkage::full_velocity(int s, const Eigen::VectorXd& reduced_velocity) const {
-  return full_velocities(s, reduced_velocity).col(0);
+  const ElasticRod& rod = rods_[s];
+  const std::vector<int>& slot = slots_[s];
+  Eigen::VectorXd out(rod.num_dofs());
+  for (int k = 0; k < rod.num_dofs(); ++k) out[k] = slot[k] >= 0 ? reduced_velocity[slot[k]] : 0.0;
+  // A joint's terminal edge: the directional derivative of terminal() along
+  // its parameters' velocity (forward mode, one direction).
+  using D = Dual1<1>;
+  const SegmentTopology& seg = topology_.segments[s];
+  for (int side = 0; side < 2; ++side) {
+    if (seg.joint[side] < 0) continue;
+    const Joint& joint = joints_[seg.joint[side]];
+    const int offset = joint_offset_[seg.joint[side]];
+    std::array<D, 9> q;
+    for (int k = 0; k < 9; ++k) {
+      q[k] = D(joint.params()[k]);
+      q[k].g[0] = reduced_velocity[offset + k];
+    }
+    const int edge = side == 0 ? 0 : rod.num_edges() - 1;
+    const TerminalEdge<D> t = joint.terminal_edge<D>(q.data(), seg.label[side], seg.sign[side],
+                                                     rod.source_frames()[edge], rod.thetas()[edge]);
+    const int first = ElasticRod::node_dof(edge), second = ElasticRod::node_dof(edge + 1);
+    out.segment<3>(first) << t.first.x.g[0], t.first.y.g[0], t.first.z.g[0];
+    out.segment<3>(second) << t.second.x.g[0], t.second.y.g[0], t.second.z.g[0];
+    out[rod.theta_dof(edge)] = t.theta.g[0];
+  }
+  return out;
 }
 
 Eigen::MatrixXd RodLinkage::full_velocities(int s,

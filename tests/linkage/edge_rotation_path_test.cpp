@@ -6,9 +6,12 @@
 
 #include <doctest/doctest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
+#include <stdexcept>
+#include <vector>
 
 #include "linkage/statics_problem.hpp"
 #include "linkage_fixtures.hpp"
@@ -162,6 +165,58 @@ TEST_CASE("Along the edge-turning path a cantilever's free part turns rigidly, u
     CHECK(turned < 1e-20 * straight + 1e-24);
     CHECK(straight > 0.0);
   }
+}
+
+}  // namespace xshell::test
+
+namespace xshell::test {
+
+// The joint turns its terminal nodes on arcs; the free edge next to them
+// turns by its own linearized step, not by the difference between an arc
+// and a line (docs/model.md section 9.8).
+TEST_CASE("Along the edge-turning path a rod swinging about its joint turns rigidly, unstretched") {
+  const LineGraph g = single_x();
+  LinkageOptions o = test_options(RestShape::Input, 6);
+  StaticsSetup setup;
+  setup.supports = {{1, {SupportDof::Position, SupportDof::Orientation}}};
+  o.clamped_ends = clamped_free_ends(g, setup.supports);
+  LinkageProblem problem(RodLinkage(g, o), setup);
+  // The mechanism: the second rod turning about the joint's normal, the
+  // free Hessian's only null vector at the stress-free start.
+  const Eigen::MatrixXd H = problem.free_hessian();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> modes(H);
+  REQUIRE(std::abs(modes.eigenvalues()(0)) < 1e-9 * modes.eigenvalues()(1));
+  const int alpha = problem.free_position(problem.linkage().joint_dof_offset(0) + kAlpha);
+  REQUIRE(alpha >= 0);
+  const Eigen::VectorXd q0 = problem.free_dofs();
+  std::vector<double> turned;
+  for (const double turn : {0.2, 0.6}) {
+    CAPTURE(turn);
+    const Eigen::VectorXd p = (turn / modes.eigenvectors()(alpha, 0)) * modes.eigenvectors().col(0);
+    problem.set_free_dofs(q0 + p);
+    const double straight = problem.energy().total();
+    problem.set_free_dofs(q0);
+    EdgeRotationPath path(problem);
+    path.start(problem, p, true);
+    problem.set_free_dofs(path.point(problem, 1.0));
+    turned.push_back(problem.energy().total());
+    problem.set_free_dofs(q0);
+    CHECK(straight > 1e-6);
+    CHECK(turned.back() < 1e-7 * straight);  // 1e-6 with the joints' arcs against lines
+  }
+  // What is left is third order in the turn (the thetas' straight step
+  // against the frames' transport): the energy grows as its sixth power, not
+  // as the fourth of a second-order error.
+  CHECK(turned[1] > 0.0);
+  CHECK(turned[1] / turned[0] > std::pow(3.0, 5));
+  // No point of the path turns the rod by more than a quarter turn: at 2
+  // radians per unit alpha, up to alpha = pi / 4.
+  const Eigen::VectorXd p = (2.0 / modes.eigenvectors()(alpha, 0)) * modes.eigenvectors().col(0);
+  EdgeRotationPath path(problem);
+  path.start(problem, p, true);
+  CHECK_NOTHROW(path.point(problem, 0.77));
+  CHECK_THROWS_AS(path.point(problem, 0.8), std::domain_error);
+  problem.set_free_dofs(q0);
 }
 
 }  // namespace xshell::test

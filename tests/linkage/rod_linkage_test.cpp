@@ -221,3 +221,40 @@ TEST_CASE("The gradient is orthogonal to rigid motions of the linkage") {
 }
 
 }  // namespace xshell::test::rod_linkage_test
+
+namespace xshell::test::rod_linkage_test {
+
+TEST_CASE("A segment's velocity is the Jacobian's product and the difference of set_dofs") {
+  std::mt19937 rng(5);
+  int compared = 0;
+  for (const NamedGraph& ng : test_graphs()) {
+    for (const JointKind kind : {JointKind::Rotation, JointKind::EdgeVectors}) {
+      CAPTURE(ng.name);
+      LinkageOptions o = test_options(RestShape::Straight);
+      o.joint_kind = kind;
+      RodLinkage linkage(ng.graph, o);
+      // Away from the source frames and the folded joints (omega != 0).
+      linkage.set_dofs(linkage.dofs() + random_vector(linkage.num_dofs(), rng, 0.05));
+      const Eigen::VectorXd r = linkage.dofs();
+      const Eigen::VectorXd v = random_vector(linkage.num_dofs(), rng, 1.0);
+      const double h = 1e-5;
+      RodLinkage plus = linkage, minus = linkage;
+      plus.set_dofs(r + h * v);
+      minus.set_dofs(r - h * v);
+      for (int s = 0; s < linkage.num_segments(); ++s) {
+        const Eigen::VectorXd direct = linkage.full_velocity(s, v);
+        const Eigen::VectorXd jacobian = linkage.full_velocities(s, v).col(0);
+        const Eigen::VectorXd difference =
+            (plus.segment(s).dofs() - minus.segment(s).dofs()) / (2.0 * h);
+        CHECK((direct - jacobian).lpNorm<Eigen::Infinity>() <=
+              1e-12 * jacobian.lpNorm<Eigen::Infinity>());
+        // Central difference: O(h^2) of the second derivatives' scale.
+        CHECK((direct - difference).lpNorm<Eigen::Infinity>() <= 1e-7);
+        ++compared;
+      }
+    }
+  }
+  CHECK(compared > 20);
+}
+
+}  // namespace xshell::test::rod_linkage_test
