@@ -269,12 +269,7 @@ Eigen::VectorXd RodLinkage::dofs() const {
 }
 
 TerminalEdge<double> RodLinkage::terminal(int s, int side) const {
-  const SegmentTopology& seg = topology_.segments[s];
-  const ElasticRod& rod = rods_[s];
-  const int edge = side == 0 ? 0 : rod.num_edges() - 1;
-  const double hint = theta_hints_.empty() ? rod.thetas()[edge] : theta_hints_[s][side];
-  return joints_[seg.joint[side]].terminal_edge(seg.label[side], seg.sign[side],
-                                                rod.source_frames()[edge], hint);
+  return terminal(s, side, joints_[topology_.segments[s].joint[side]].params().data());
 }
 
 void RodLinkage::record_theta_hints() {

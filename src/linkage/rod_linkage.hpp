@@ -209,6 +209,9 @@ class RodLinkage {
   // order described above.
   void number_unknowns();
   TerminalEdge<double> terminal(int s, int side) const;
+  // The same for the joint's parameters q (its own, or duals of them).
+  template <class T>
+  TerminalEdge<T> terminal(int s, int side, const T* q) const;
   // Keeps every terminal theta as the branch hint of set_dofs (see theta_hints_).
   void record_theta_hints();
 
@@ -231,5 +234,15 @@ class RodLinkage {
   // found the twist wound by 2 pi.)
   std::vector<std::array<double, 2>> theta_hints_;
 };
+
+template <class T>
+TerminalEdge<T> RodLinkage::terminal(int s, int side, const T* q) const {
+  const SegmentTopology& seg = topology_.segments[s];
+  const ElasticRod& rod = rods_[s];
+  const int edge = side == 0 ? 0 : rod.num_edges() - 1;
+  const double hint = theta_hints_.empty() ? rod.thetas()[edge] : theta_hints_[s][side];
+  return joints_[seg.joint[side]].terminal_edge<T>(q, seg.label[side], seg.sign[side],
+                                                   rod.source_frames()[edge], hint);
+}
 
 }  // namespace xshell

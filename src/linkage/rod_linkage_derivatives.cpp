@@ -113,16 +113,14 @@ Eigen::VectorXd RodLinkage::full_velocity(int s, const Eigen::VectorXd& reduced_
   const SegmentTopology& seg = topology_.segments[s];
   for (int side = 0; side < 2; ++side) {
     if (seg.joint[side] < 0) continue;
-    const Joint& joint = joints_[seg.joint[side]];
     const int offset = joint_offset_[seg.joint[side]];
     std::array<D, 9> q;
     for (int k = 0; k < 9; ++k) {
-      q[k] = D(joint.params()[k]);
+      q[k] = D(joints_[seg.joint[side]].params()[k]);
       q[k].g[0] = reduced_velocity[offset + k];
     }
+    const TerminalEdge<D> t = terminal(s, side, q.data());
     const int edge = side == 0 ? 0 : rod.num_edges() - 1;
-    const TerminalEdge<D> t = joint.terminal_edge<D>(q.data(), seg.label[side], seg.sign[side],
-                                                     rod.source_frames()[edge], rod.thetas()[edge]);
     const int first = ElasticRod::node_dof(edge), second = ElasticRod::node_dof(edge + 1);
     out.segment<3>(first) << t.first.x.g[0], t.first.y.g[0], t.first.z.g[0];
     out.segment<3>(second) << t.second.x.g[0], t.second.y.g[0], t.second.z.g[0];
