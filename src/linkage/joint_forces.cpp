@@ -25,7 +25,7 @@ std::vector<JointForce> joint_forces(const LinkageProblem& problem) {
         const ElasticRod& rod = l.segment(end.segment);
         const SegmentTopology& seg = l.topology().segments[end.segment];
         const int side = end.at_start ? 0 : 1;
-        const int edge = end.at_start ? 0 : rod.num_edges() - 1;
+        const int edge = terminal_edge_index(rod, side);
         const Eigen::VectorXd& g = gradients[end.segment];
         Eigen::Matrix<double, 7, 1> g_terminal;
         g_terminal << g.segment<3>(3 * edge), g.segment<3>(3 * (edge + 1)), g[rod.theta_dof(edge)];

@@ -15,11 +15,6 @@ namespace {
 // several.
 constexpr int kJointChunk = 2;
 
-// Index of a segment's terminal edge at one end.
-int terminal_edge_index(const ElasticRod& rod, int side) {
-  return side == 0 ? 0 : rod.num_edges() - 1;
-}
-
 }  // namespace
 
 void LinkageAssembly::copy_runs(const std::vector<CopyRun>& runs, const double* local,

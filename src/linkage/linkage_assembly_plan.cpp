@@ -16,7 +16,7 @@ namespace {
 // TerminalEdge (first node, second node, theta); rod_linkage.cpp sets the
 // same ones.
 std::array<int, 7> terminal_variables(const ElasticRod& rod, int side) {
-  const int node = side == 0 ? 0 : rod.num_edges() - 1;
+  const int node = terminal_edge_index(rod, side);
   std::array<int, 7> v;
   for (int c = 0; c < 3; ++c) {
     v[c] = ElasticRod::node_dof(node) + c;

@@ -297,7 +297,7 @@ void RodLinkage::set_dofs(const Eigen::VectorXd& r, RodEnergy* energy) {
     for (int side = 0; side < 2; ++side) {
       if (topology_.segments[s].joint[side] < 0) continue;
       const TerminalEdge<double> t = terminal(s, side);
-      const int node = side == 0 ? 0 : rod.num_edges() - 1;
+      const int node = terminal_edge_index(rod, side);
       q.segment<3>(ElasticRod::node_dof(node)) = t.first.values();
       q.segment<3>(ElasticRod::node_dof(node + 1)) = t.second.values();
       q[rod.theta_dof(node)] = t.theta;

@@ -53,6 +53,11 @@
 
 namespace xshell {
 
+// Index of a segment's terminal edge at its end `side` (0: first, 1: last).
+inline int terminal_edge_index(const ElasticRod& rod, int side) {
+  return side == 0 ? 0 : rod.num_edges() - 1;
+}
+
 enum class RestShape { Input, Straight };
 
 struct LinkageOptions {
@@ -239,7 +244,7 @@ template <class T>
 TerminalEdge<T> RodLinkage::terminal(int s, int side, const T* q) const {
   const SegmentTopology& seg = topology_.segments[s];
   const ElasticRod& rod = rods_[s];
-  const int edge = side == 0 ? 0 : rod.num_edges() - 1;
+  const int edge = terminal_edge_index(rod, side);
   const double hint = theta_hints_.empty() ? rod.thetas()[edge] : theta_hints_[s][side];
   return joints_[seg.joint[side]].terminal_edge<T>(q, seg.label[side], seg.sign[side],
                                                    rod.source_frames()[edge], hint);

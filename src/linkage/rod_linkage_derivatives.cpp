@@ -39,7 +39,7 @@ RodLinkage::LocalMap RodLinkage::local_map(int s, bool with_hessians) const {
   for (int k = 0; k < rod.num_dofs(); ++k)
     if (slot[k] >= 0) map.jacobian(k, slot[k] - segment_offset_[s]) = 1.0;
   for (const auto& [offset, side] : map.joint_blocks) {
-    const int edge = side == 0 ? 0 : rod.num_edges() - 1;
+    const int edge = terminal_edge_index(rod, side);
     Eigen::Matrix<double, 7, 9> jac;
     JointHessian scratch[7];
     if (with_hessians)
@@ -120,7 +120,7 @@ Eigen::VectorXd RodLinkage::full_velocity(int s, const Eigen::VectorXd& reduced_
       q[k].g[0] = reduced_velocity[offset + k];
     }
     const TerminalEdge<D> t = terminal(s, side, q.data());
-    const int edge = side == 0 ? 0 : rod.num_edges() - 1;
+    const int edge = terminal_edge_index(rod, side);
     const int first = ElasticRod::node_dof(edge), second = ElasticRod::node_dof(edge + 1);
     out.segment<3>(first) << t.first.x.g[0], t.first.y.g[0], t.first.z.g[0];
     out.segment<3>(second) << t.second.x.g[0], t.second.y.g[0], t.second.z.g[0];
