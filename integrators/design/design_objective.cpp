@@ -35,15 +35,11 @@ bool valid_lengths(const std::vector<double>& lengths, int count, std::string& r
   return true;
 }
 
-// x restricted to the free unknowns of `problem`, and back (zero on fixed ones).
+// x restricted to the free unknowns of `problem` (LinkageProblem::with_fixed_zero
+// goes back).
 Eigen::VectorXd free_part(const LinkageProblem& problem, const Eigen::VectorXd& x) {
   Eigen::VectorXd out(problem.num_free());
   for (int i = 0; i < problem.num_free(); ++i) out[i] = x[problem.free_indices()[i]];
-  return out;
-}
-Eigen::VectorXd with_fixed_zero(const LinkageProblem& problem, const Eigen::VectorXd& q) {
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(problem.linkage().num_dofs());
-  for (int i = 0; i < problem.num_free(); ++i) out[problem.free_indices()[i]] = q[i];
   return out;
 }
 
@@ -126,8 +122,7 @@ bool DesignObjective::gradient(const std::vector<double>& lengths, Eigen::Vector
   const Eigen::VectorXd f = w.fit * free_part(deployed(), target_fit_gradient(linkage, targets_));
   const Eigen::VectorXd lambda = deployed_->adjoint(f);
   if (lambda.size() == 0) return false;
-  out -=
-      linkage.gradient_rest_length_derivative().transpose() * with_fixed_zero(deployed(), lambda);
+  out -= linkage.gradient_rest_length_derivative().transpose() * deployed().with_fixed_zero(lambda);
   return true;
 }
 

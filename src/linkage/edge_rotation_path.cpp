@@ -66,8 +66,7 @@ void EdgeRotationPath::start(const LinkageProblem& problem, const Eigen::VectorX
 
 void EdgeRotationPath::start_velocities(const LinkageProblem& problem) {
   const RodLinkage& linkage = problem.linkage();
-  Eigen::VectorXd reduced = Eigen::VectorXd::Zero(linkage.num_dofs());
-  for (int k = 0; k < problem.num_free(); ++k) reduced[problem.free_indices()[k]] = p_[k];
+  const Eigen::VectorXd reduced = problem.with_fixed_zero(p_);
   start_velocities_.resize(linkage.num_segments());
   twist_rates_.resize(linkage.num_segments());
   double fastest = 0.0;  // the largest rate at which an edge turns (radians per unit alpha)

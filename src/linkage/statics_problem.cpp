@@ -31,6 +31,12 @@ Eigen::VectorXd LinkageProblem::free_dofs() const {
   return q;
 }
 
+Eigen::VectorXd LinkageProblem::with_fixed_zero(const Eigen::VectorXd& q) const {
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(linkage_.num_dofs());
+  for (size_t i = 0; i < free_.size(); ++i) r[free_[i]] = q[i];
+  return r;
+}
+
 Eigen::VectorXd LinkageProblem::dofs_with_free(const Eigen::VectorXd& q) const {
   Eigen::VectorXd r = linkage_.dofs();
   for (size_t i = 0; i < free_.size(); ++i) r[free_[i]] = q[i];
@@ -173,8 +179,7 @@ void LinkageProblem::rebase(Eigen::VectorXd* free_velocity) {
     linkage_.fold_joints();
     return;
   }
-  Eigen::VectorXd v = Eigen::VectorXd::Zero(linkage_.num_dofs());
-  for (size_t i = 0; i < free_.size(); ++i) v[free_[i]] = (*free_velocity)[i];
+  Eigen::VectorXd v = with_fixed_zero(*free_velocity);
   // Edge velocities and old source frames, before the update.
   std::vector<Eigen::VectorXd> full_velocity;
   std::vector<std::vector<SourceFrame>> old_sources;

@@ -113,6 +113,9 @@ class LinkageProblem {
   // The position of a reduced unknown among the free ones, -1 when it is fixed.
   int free_position(int reduced_index) const { return free_position_[reduced_index]; }
   Eigen::VectorXd free_dofs() const;
+  // A vector on the free unknowns (a velocity, a step, multipliers) as one on
+  // all reduced unknowns, zero on the fixed ones.
+  Eigen::VectorXd with_fixed_zero(const Eigen::VectorXd& q) const;
   void set_free_dofs(const Eigen::VectorXd& q);
   // The same, returning energy().total() there (computed in the same pass).
   double set_free_dofs_and_energy(const Eigen::VectorXd& q);
