@@ -216,14 +216,17 @@ void ElasticRod::add_gradient(Eigen::Ref<Eigen::VectorXd> g) const {
 }
 
 void ElasticRod::add_gradient_and_hessian(Eigen::Ref<Eigen::VectorXd> g,
-                                          Eigen::Ref<Eigen::MatrixXd> hessian) const {
+                                          Eigen::Ref<Eigen::MatrixXd> hessian,
+                                          const Eigen::VectorXd* hessian_axial_forces) const {
   for (int j = 0; j < num_edges(); ++j) {
     const double k = stiffness_.stretching * stretching_share_[j];
     const Eigen::Vector3d e = edge(j);
     const Eigen::Vector3d ge = stretching_gradient(e, rest_length_[j], k);
     g.segment<3>(node_dof(j)) -= ge;
     g.segment<3>(node_dof(j + 1)) += ge;
-    const Eigen::Matrix3d h = stretching_hessian(e, rest_length_[j], k);
+    const Eigen::Matrix3d h =
+        hessian_axial_forces ? stretching_hessian(e, rest_length_[j], k, (*hessian_axial_forces)[j])
+                             : stretching_hessian(e, rest_length_[j], k);
     const int a = node_dof(j), b = node_dof(j + 1);
     hessian.block<3, 3>(a, a) += h;
     hessian.block<3, 3>(b, b) += h;
@@ -242,6 +245,22 @@ void ElasticRod::add_gradient_and_hessian(Eigen::Ref<Eigen::VectorXd> g,
     hessian.block<2, 9>(t0, x) += hv.block<2, 9>(9, 0);
     hessian.block<2, 2>(t0, t0) += hv.block<2, 2>(9, 9);
   }
+}
+
+double ElasticRod::axial_force(int j) const {
+  return xshell::axial_force(edge(j), rest_length_[j],
+                             stiffness_.stretching * stretching_share_[j]);
+}
+
+Eigen::VectorXd ElasticRod::linearized_axial_forces(const Eigen::VectorXd& velocity) const {
+  Eigen::VectorXd out(num_edges());
+  for (int j = 0; j < num_edges(); ++j) {
+    const Eigen::Vector3d de =
+        velocity.segment<3>(node_dof(j + 1)) - velocity.segment<3>(node_dof(j));
+    const double k = stiffness_.stretching * stretching_share_[j];
+    out[j] = axial_force(j) + k * tangent(j).dot(de) / rest_length_[j];
+  }
+  return out;
 }
 
 Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> ElasticRod::hessian_pattern() const {

@@ -119,7 +119,16 @@ class ElasticRod {
   void add_gradient(Eigen::Ref<Eigen::VectorXd> g) const;
   // Adds the gradient to g (num_dofs()) and the Hessian to h (dense,
   // num_dofs() square) in one pass over the stencils; allocates nothing.
-  void add_gradient_and_hessian(Eigen::Ref<Eigen::VectorXd> g, Eigen::Ref<Eigen::MatrixXd> h) const;
+  // With hessian_axial_forces (one per edge), the stretching Hessian's
+  // geometric stiffness takes those axial forces instead of the edges' own
+  // (Newton's mixed Hessian, docs/model.md section 9.8); g stays exact.
+  void add_gradient_and_hessian(Eigen::Ref<Eigen::VectorXd> g, Eigen::Ref<Eigen::MatrixXd> h,
+                                const Eigen::VectorXd* hessian_axial_forces = nullptr) const;
+  // Edge j's axial force N_j = k_j (|e_j| / l_j - 1) (stretching.hpp).
+  double axial_force(int j) const;
+  // The axial forces linearized along a velocity v of the full variables
+  // (num_dofs()): N_j + k_j t_j . (v_{j+1} - v_j) / l_j, one per edge.
+  Eigen::VectorXd linearized_axial_forces(const Eigen::VectorXd& velocity) const;
   // Structure of the Hessian: true where some stencil can make an entry
   // nonzero (num_dofs() square, symmetric). Depends on num_edges() only.
   Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> hessian_pattern() const;

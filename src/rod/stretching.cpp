@@ -13,11 +13,19 @@ Eigen::Vector3d stretching_gradient(const Eigen::Vector3d& e, double rest_length
 }
 
 Eigen::Matrix3d stretching_hessian(const Eigen::Vector3d& e, double rest_length, double k) {
+  return stretching_hessian(e, rest_length, k, axial_force(e, rest_length, k));
+}
+
+Eigen::Matrix3d stretching_hessian(const Eigen::Vector3d& e, double rest_length, double k,
+                                   double force) {
   const double len = e.norm();
   const Eigen::Vector3d t = e / len;
   const Eigen::Matrix3d tt = t * t.transpose();
-  return (k / rest_length) * tt +
-         (k * (len / rest_length - 1.0) / len) * (Eigen::Matrix3d::Identity() - tt);
+  return (k / rest_length) * tt + (force / len) * (Eigen::Matrix3d::Identity() - tt);
+}
+
+double axial_force(const Eigen::Vector3d& e, double rest_length, double k) {
+  return k * (e.norm() / rest_length - 1.0);
 }
 
 }  // namespace xshell
