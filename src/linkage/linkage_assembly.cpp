@@ -56,7 +56,8 @@ void LinkageAssembly::prepare_scratch() {
 
 void LinkageAssembly::local_derivatives(const RodLinkage& linkage, int s,
                                         const std::vector<Eigen::VectorXd>* forces,
-                                        bool with_hessian, Scratch& w) const {
+                                        bool with_hessian, Scratch& w,
+                                        const Eigen::VectorXd* hessian_axial_forces) const {
   const ElasticRod& rod = linkage.segment(s);
   const SegmentPlan& plan = plans_[s];
   const int nv = rod.num_dofs();
@@ -65,14 +66,24 @@ void LinkageAssembly::local_derivatives(const RodLinkage& linkage, int s,
   if (with_hessian) {
     Eigen::Map<Eigen::MatrixXd> hv(w.rod_hessian.data(), nv, nv);
     hv.setZero();
-    rod.add_gradient_and_hessian(gv, hv);
+    rod.add_gradient_and_hessian(gv, hv, hessian_axial_forces);
   } else {
     rod.add_gradient(gv);
   }
   if (forces) gv -= (*forces)[s];
   terminal_jacobians(linkage, s, with_hessian, w);
   local_gradient(plan, nv, w);
-  if (with_hessian) local_hessian(plan, nv, w);
+  if (!with_hessian) return;
+  // The joints' second-derivative terms weigh the rod's gradient: in the
+  // mixed Hessian, with the given axial forces (the gradient itself is
+  // already stored).
+  if (hessian_axial_forces)
+    for (int j = 0; j < rod.num_edges(); ++j) {
+      const Eigen::Vector3d f = ((*hessian_axial_forces)[j] - rod.axial_force(j)) * rod.tangent(j);
+      gv.segment<3>(ElasticRod::node_dof(j)) -= f;
+      gv.segment<3>(ElasticRod::node_dof(j + 1)) += f;
+    }
+  local_hessian(plan, nv, w);
 }
 
 void LinkageAssembly::terminal_jacobians(const RodLinkage& linkage, int s, bool with_hessian,
@@ -200,7 +211,8 @@ void LinkageAssembly::sum_gradient(Eigen::VectorXd& out, int self, int members) 
 }
 
 void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen::VectorXd>* forces,
-                              Eigen::SparseMatrix<double>& out, Eigen::VectorXd* gradient) {
+                              Eigen::SparseMatrix<double>& out, Eigen::VectorXd* gradient,
+                              const std::vector<Eigen::VectorXd>* hessian_axial_forces) {
   if (num_dofs_ != linkage.num_dofs())
     throw std::logic_error("LinkageAssembly: built for another linkage");
   prepare_scratch();
@@ -232,7 +244,8 @@ void LinkageAssembly::hessian(const RodLinkage& linkage, const std::vector<Eigen
         [&](int j) { joint_geometry_derivatives(linkage.joint(j), joint_geometry_[j]); },
         [&](int s) {
           Scratch& w = scratch_[self];
-          local_derivatives(linkage, s, forces, true, w);
+          local_derivatives(linkage, s, forces, true, w,
+                            hessian_axial_forces ? &(*hessian_axial_forces)[s] : nullptr);
           const SegmentPlan& plan = plans_[s];
           const double* local = w.local_hessian.data();  // column-major, plan.size() square
           copy_runs(plan.shared_runs, local, hessian_contributions_.data() + plan.hessian_begin);

@@ -54,9 +54,14 @@ class LinkageAssembly {
   // Its Hessian restricted to the free unknowns (both triangles). `out` gets
   // pattern() the first time (or when its pattern differs) and then only
   // new values. With `gradient`, also the gradient above, from the same
-  // pass (as gradient() gives it, to round-off).
+  // pass (as gradient() gives it, to round-off). With hessian_axial_forces
+  // (per segment, one per edge), the Hessian is Newton's mixed one: the
+  // stretching's geometric stiffness, in the rods' Hessians and in the
+  // joints' second-derivative terms, takes those axial forces instead of
+  // the edges' own (docs/model.md section 9.8); the gradient stays exact.
   void hessian(const RodLinkage& linkage, const std::vector<Eigen::VectorXd>* forces,
-               Eigen::SparseMatrix<double>& out, Eigen::VectorXd* gradient = nullptr);
+               Eigen::SparseMatrix<double>& out, Eigen::VectorXd* gradient = nullptr,
+               const std::vector<Eigen::VectorXd>* hessian_axial_forces = nullptr);
   const Eigen::SparseMatrix<double>& pattern() const { return pattern_; }
 
  private:
@@ -130,10 +135,12 @@ class LinkageAssembly {
   void plan_gradient_sums();
 
   // Evaluation steps (linkage_assembly.cpp), all into the scratch.
-  // Local gradient (and Hessian) of segment s.
+  // Local gradient (and Hessian, mixed with the segment's
+  // hessian_axial_forces when given) of segment s.
   void local_derivatives(const RodLinkage& linkage, int s,
                          const std::vector<Eigen::VectorXd>* forces, bool with_hessian,
-                         Scratch& scratch) const;
+                         Scratch& scratch,
+                         const Eigen::VectorXd* hessian_axial_forces = nullptr) const;
   // The joint Jacobians (with_hessian: and second derivatives) of segment
   // s's terminal edges.
   void terminal_jacobians(const RodLinkage& linkage, int s, bool with_hessian,

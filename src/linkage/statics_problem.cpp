@@ -130,10 +130,26 @@ const Eigen::SparseMatrix<double>& LinkageProblem::free_hessian() {
   if (hessian_version_ == version_) return hessian_;
   if (!assembly_.matches(linkage_, free_position_))
     assembly_ = LinkageAssembly(linkage_, free_position_);
-  assembly_.hessian(linkage_, &segment_forces_, hessian_, &gradient_);
+  assembly_.hessian(linkage_, &segment_forces_, hessian_, &gradient_,
+                    mixed_hessian() ? &hessian_axial_forces_ : nullptr);
   gradient_ -= point_forces_;
   gradient_version_ = hessian_version_ = version_;
   return hessian_;
+}
+
+void LinkageProblem::use_mixed_hessian(const Eigen::VectorXd& p) {
+  const Eigen::VectorXd v = with_fixed_zero(p);
+  hessian_axial_forces_.resize(linkage_.num_segments());
+  for (int s = 0; s < linkage_.num_segments(); ++s)
+    hessian_axial_forces_[s] =
+        linkage_.segment(s).linearized_axial_forces(linkage_.full_velocity(s, v));
+  hessian_version_ = -1;
+}
+
+void LinkageProblem::use_exact_hessian() {
+  if (!mixed_hessian()) return;
+  hessian_axial_forces_.clear();
+  hessian_version_ = -1;
 }
 
 Eigen::VectorXd LinkageProblem::gradient_weights() const {

@@ -140,6 +140,15 @@ class LinkageProblem {
   // Forgets the cached gradient and Hessian, so that the next calls compute
   // them (benchmarks time them this way).
   void discard_cached_derivatives() { gradient_version_ = hessian_version_ = -1; }
+  // Newton's mixed Hessian (docs/model.md section 9.8): from this call on,
+  // free_hessian() gives the stretching's geometric stiffness the axial
+  // forces linearized along the free step p from the current configuration
+  // (RodLinkage::full_velocity of p, ElasticRod::linearized_axial_forces),
+  // whatever configuration it is evaluated at, until use_exact_hessian().
+  // The energy and gradient stay exact.
+  void use_mixed_hessian(const Eigen::VectorXd& p);
+  void use_exact_hessian();
+  bool mixed_hessian() const { return !hessian_axial_forces_.empty(); }
   Eigen::VectorXd gradient_weights() const;
   // max |w_i g_i| over the free unknowns.
   double gradient_measure() const;
@@ -229,6 +238,8 @@ class LinkageProblem {
   mutable long gradient_version_ = -1;
   mutable Eigen::VectorXd gradient_;
   long hessian_version_ = -1;
+  // Per segment, the axial forces of the mixed Hessian; empty: exact.
+  std::vector<Eigen::VectorXd> hessian_axial_forces_;
   // Pattern, value slots and work space of free_gradient() / free_hessian(),
   // built at their first call (and again if the free unknowns change).
   mutable LinkageAssembly assembly_;
