@@ -37,6 +37,9 @@ class LinkageObjective : public Objective {
     return true;
   }
   Eigen::VectorXd path_point(double alpha) override { return path_->point(problem_, alpha); }
+  // The stretching's axial forces (LinkageProblem::use_mixed_hessian).
+  void use_mixed_hessian(const Eigen::VectorXd& p) override { problem_.use_mixed_hessian(p); }
+  void use_exact_hessian() override { problem_.use_exact_hessian(); }
 
   LinkageProblem& problem() { return problem_; }
 

@@ -66,6 +66,14 @@ class Objective {
     return false;
   }
   virtual Eigen::VectorXd path_point(double alpha);
+
+  // Optionally, Newton's mixed Hessian (docs/model.md section 9.8): from
+  // use_mixed_hessian(p) at q0 on, hessian() takes the internal forces
+  // linearized along the step p from q0 wherever it is evaluated, until
+  // use_exact_hessian(). Energy and gradient stay exact. By default the
+  // Hessian stays exact.
+  virtual void use_mixed_hessian(const Eigen::VectorXd& p) { (void)p; }
+  virtual void use_exact_hessian() {}
 };
 
 }  // namespace xshell

@@ -17,6 +17,10 @@ DescentStepResult energy_descent_step(ObjectiveEvaluator& evaluator, CholeskySol
   if (capped) p *= options.max_step / length;
   const double slope = g0.dot(p);  // < 0: K is positive definite
   if (!(slope < 0.0)) return {};
+  if (options.mixed_hessian) {
+    evaluator.move_to(q0);
+    evaluator.objective().use_mixed_hessian(p);
+  }
 
   BacktrackingMerit energy;
   energy.phi0 = e0;

@@ -50,6 +50,10 @@ struct DescentStepOptions {
   // valley (a buckled column turning its plane, docs/model.md section 9.8)
   // has and the path does not, so the Newton step can fall far short.
   double max_expansion = 64.0;
+  // energy_descent_step: once p is known, the objective's Hessian becomes
+  // the mixed one along p (Objective::use_mixed_hessian), for the next
+  // iteration wherever the step ends.
+  bool mixed_hessian = false;
 };
 
 struct DescentStepResult {

@@ -162,6 +162,12 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
     set_no_unknowns(objective_.energy(), run.result);
     return run.result;
   }
+  // However the solve ends (an exception included), the objective's
+  // Hessian is the exact one again.
+  struct ExactHessianAtExit {
+    Objective& objective;
+    ~ExactHessianAtExit() { objective.use_exact_hessian(); }
+  } exact_at_exit{objective_};
   impl_->start(run);
   run.result.setup_seconds = seconds_since(start);
   int iteration = 0;
@@ -268,6 +274,7 @@ bool NewtonSolver::Impl::energy_step(const Eigen::VectorXd& q0, NewtonRun& run, 
   descent.max_step = run.step_cap;
   descent.follow_path = options.follow_path;
   descent.newton_step = !system.last_factorization().shifted;
+  descent.mixed_hessian = options.mixed_hessian;
   const DescentStepResult step =
       energy_descent_step(evaluator, system.cholesky(), q0, run.report.energy, g0, descent);
   rethrow_if_fatal(q0);
@@ -330,6 +337,7 @@ void NewtonSolver::Impl::rethrow_if_fatal(const Eigen::VectorXd& q0) {
 }
 
 void NewtonSolver::Impl::finish(NewtonRun& run) {
+  objective.use_exact_hessian();  // stability is the exact Hessian's
   if (run.result.status != SolveStatus::NonFinite)
     run.result.stable = is_positive_definite(system.cholesky(), objective.hessian());
   run.result.factorizations = factorizations() - run.factorizations_at_start;
