@@ -238,6 +238,8 @@ bool NewtonSolver::Impl::iterate(int iteration, NewtonRun& run) {
     return false;
   }
   if (!accept_step(iteration, q0, accepted_energy, run)) return false;
+  // KINSOL's own steps leave no linearized forces: the exact Hessian next.
+  if (!run.report.energy_line_search) objective.use_exact_hessian();
   // The rebase moves nothing (the energy stays), but re-expresses q.
   objective.rebase();
   evaluator.sync();

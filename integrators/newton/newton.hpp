@@ -103,7 +103,8 @@ struct NewtonOptions {
   // Newton's mixed Hessian on energy line search steps (docs/model.md
   // section 9.8): after each step, the Hessian's stretching geometric
   // stiffness takes the axial forces linearized along the full Newton step
-  // instead of those at the new point (Objective::use_mixed_hessian). The
+  // instead of those at the new point (Objective::use_mixed_hessian); after
+  // a step of KINSOL's line search (LineSearch::Kinsol*), the exact one. The
   // energy, the gradient, the equilibrium and the stability test (on the
   // exact Hessian) are unchanged. fish_linkage under gravity: 54 -> 30
   // iterations. The deployment's constrained Newton keeps the exact Hessian

@@ -28,6 +28,21 @@ NewtonOptions tight(double tolerance = 1e-9) {
   return n;
 }
 
+// One loop of four joints (the 2 x 2 grid, laths 0.25 scale m long) clamped
+// at a corner, folding and swinging down under its weight.
+LinkageProblem hanging_loop(double scale) {
+  StaticsSetup setup;
+  setup.gravity = Eigen::Vector3d(0, 0, -9.81);
+  setup.supports.push_back({0, {SupportDof::Position, SupportDof::Orientation}});
+  LinkageOptions laths = lath_options(8);
+  laths.material.young_modulus = 2e9;
+  laths.material.density = 1000;
+  laths.material.section = {SectionShape::Rectangle, 0.02, 0.01};
+  LineGraph loop = square_grid(2);
+  for (Eigen::Vector3d& v : loop.vertices) v *= scale;
+  return LinkageProblem(RodLinkage(loop, laths), setup);
+}
+
 }  // namespace
 
 // The cantilever and the clamped-free column against the elastica, with their
@@ -108,23 +123,13 @@ TEST_CASE("A zero-energy mechanism (flat grid of straight rods, no load) is conv
 }
 
 TEST_CASE("Mixed Hessian: a hanging loop reaches the same stable equilibrium in fewer iterations") {
-  // One loop of four joints (the 2 x 2 grid, 2 m laths) clamped at a
-  // corner, folding and swinging down under its weight: the stretching's
-  // axial forces change by their own size between iterates.
-  StaticsSetup setup;
-  setup.gravity = Eigen::Vector3d(0, 0, -9.81);
-  setup.supports.push_back({0, {SupportDof::Position, SupportDof::Orientation}});
-  LinkageOptions laths = lath_options(8);
-  laths.material.young_modulus = 2e9;
-  laths.material.density = 1000;
-  laths.material.section = {SectionShape::Rectangle, 0.02, 0.01};
-  LineGraph loop = square_grid(2);
-  for (Eigen::Vector3d& v : loop.vertices) v *= 8.0;
+  // Laths 2 m long: the stretching's axial forces change by their own size
+  // between iterates.
   int iterations[2] = {0, 0};
   std::vector<Eigen::Vector3d> end[2];
   double energy[2] = {0.0, 0.0};
   for (bool mixed : {false, true}) {
-    LinkageProblem problem(RodLinkage(loop, laths), setup);
+    LinkageProblem problem = hanging_loop(8.0);
     LinkageObjective objective(problem);
     NewtonOptions options = tight(1e-8);
     options.mixed_hessian = mixed;
@@ -144,6 +149,30 @@ TEST_CASE("Mixed Hessian: a hanging loop reaches the same stable equilibrium in 
   for (size_t v = 0; v < end[0].size(); ++v) CHECK((end[1][v] - end[0][v]).norm() < 1e-6);
   CHECK(energy[1] == doctest::Approx(energy[0]).epsilon(1e-9));
   CHECK(iterations[1] < iterations[0]);
+}
+
+TEST_CASE("Mixed Hessian: KINSOL's own steps leave the exact Hessian for the next iteration") {
+  // The loop above with laths 0.5 m long: shifted steps on the energy
+  // (mixed after them), the others by KINSOL's line search, which creeps
+  // on this loop (no convergence in 200 iterations, as with the exact
+  // Hessian throughout): the steps' kinds are what is checked.
+  LinkageProblem problem = hanging_loop(2.0);
+  LinkageObjective objective(problem);
+  NewtonOptions options = tight(1e-8);
+  options.line_search = LineSearch::KinsolWithEnergyFallback;
+  int kinsol_steps = 0, energy_steps = 0;
+  NewtonCallbacks callbacks;
+  callbacks.on_iteration = [&](const NewtonReport& r) {
+    if (r.iteration == 0) return;
+    CHECK(problem.mixed_hessian() == r.energy_line_search);
+    ++(r.energy_line_search ? energy_steps : kinsol_steps);
+  };
+  const NewtonResult result = solve_newton(objective, options, callbacks);
+  MESSAGE("KINSOL's line search: " << kinsol_steps << " steps, the energy's: " << energy_steps);
+  CHECK(result.iterations == kinsol_steps + energy_steps);
+  CHECK(!problem.mixed_hessian());
+  CHECK(kinsol_steps > 0);
+  CHECK(energy_steps > 0);
 }
 
 }  // namespace xshell::test
