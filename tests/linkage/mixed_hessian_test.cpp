@@ -70,10 +70,9 @@ TEST_CASE("Mixed linkage Hessian: exact plus the Hessian of sum_j (sigma_j - N_j
       LinkageProblem ahead = problem, behind = problem;
       ahead.set_free_dofs(q + h * p);
       behind.set_free_dofs(q - h * p);
-      const AxialForces n0 = axial_forces(problem), n1 = axial_forces(ahead),
-                        n2 = axial_forces(behind);
+      const AxialForces n1 = axial_forces(ahead), n2 = axial_forces(behind);
       AxialForces change;  // sigma - N
-      for (size_t s = 0; s < n0.per_segment.size(); ++s)
+      for (size_t s = 0; s < n1.per_segment.size(); ++s)
         change.per_segment.push_back((n1.per_segment[s] - n2.per_segment[s]) / (2.0 * h));
 
       const Eigen::MatrixXd exact(problem.free_hessian());
