@@ -76,6 +76,19 @@ class Objective {
   virtual void use_exact_hessian() {}
 };
 
+// Scope guard of a solve: however it ends (an exception included), the
+// objective's Hessian is the exact one again.
+class ExactHessianAtExit {
+ public:
+  explicit ExactHessianAtExit(Objective& objective) : objective_(objective) {}
+  ~ExactHessianAtExit() { objective_.use_exact_hessian(); }
+  ExactHessianAtExit(const ExactHessianAtExit&) = delete;
+  ExactHessianAtExit& operator=(const ExactHessianAtExit&) = delete;
+
+ private:
+  Objective& objective_;
+};
+
 }  // namespace xshell
 
 namespace xshell {

@@ -163,6 +163,7 @@ ConstrainedNewtonResult ConstrainedNewtonSolver::solve(double target,
   Impl& s = *impl_;
   ConstrainedRun run(target, callbacks, constraint_tolerance, max_saddle_escapes);
   run.step_cap = s.options.max_step;
+  const ExactHessianAtExit exact_at_exit(objective_);
   s.start(run);
   run.result.setup_seconds = seconds_since(start);
   do {  // iterations, and again after each escape from a saddle
@@ -182,6 +183,7 @@ ConstrainedNewtonResult ConstrainedNewtonSolver::solve(double target,
 // Reports the start as iteration 0.
 void ConstrainedNewtonSolver::Impl::start(ConstrainedRun& run) {
   run.factorizations_at_start = factorizations();
+  objective.use_exact_hessian();
   final_factorization.q.resize(0);
   evaluator.sync();
   evaluator.clear_failures();
@@ -339,6 +341,12 @@ bool ConstrainedNewtonSolver::Impl::line_search(ConstrainedRun& run, const Eigen
     // unshifted Hessian (H's or B^T H B's); shifted steps keep the line.
     if (options.follow_path && !run.report.shifted)
       penalty.path = objective_path(evaluator, q0, step.p, true);
+    // Newton's mixed Hessian (NewtonOptions::mixed_hessian) after the
+    // steps along the curve; the line's keep the exact one.
+    if (options.mixed_hessian && penalty.path)
+      objective.use_mixed_hessian(step.p);
+    else
+      objective.use_exact_hessian();
     accepted = backtrack_on_energy(evaluator, q0, e0, step.p, penalty, descent);
   } catch (...) {
     objective.set(q0);
@@ -403,6 +411,7 @@ bool ConstrainedNewtonSolver::Impl::converging_to_saddle(const ConstrainedRun& r
 bool ConstrainedNewtonSolver::Impl::leave_saddle(ConstrainedRun& run) {
   ConstrainedNewtonResult& result = run.result;
   if (result.saddle_escapes >= run.max_saddle_escapes) return false;
+  objective.use_exact_hessian();  // its negative curvature
   const Clock::time_point escape_start = Clock::now();
   const long factorizations_at_escape = factorizations();
   const Eigen::VectorXd q_saddle = objective.get();
@@ -431,6 +440,7 @@ bool ConstrainedNewtonSolver::Impl::leave_saddle(ConstrainedRun& run) {
 // definite so is B^T H B (B has full column rank), and H's factorization is
 // what tangent() needs next: H is tried first, B^T H B only when H fails.
 void ConstrainedNewtonSolver::Impl::stability_test(ConstrainedRun& run) {
+  objective.use_exact_hessian();
   const Eigen::SparseMatrix<double>& H = objective.hessian();
   FinalFactorization& f = final_factorization;
   f.full = full.factorize(H) == FactorizationStatus::PositiveDefinite;

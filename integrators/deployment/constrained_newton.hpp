@@ -67,7 +67,10 @@ struct ConstrainedNewtonResult : SolveResult {
 // CHOLMOD symbolic analyses (H and B^T H B) across solve() calls, e.g. over
 // the steps of a deployment. NewtonOptions::line_search is ignored (always
 // the energy); NewtonOptions::follow_path applies to the steps of an
-// unshifted Hessian (the joints placed too, docs/model.md 9.8).
+// unshifted Hessian (the joints placed too, docs/model.md 9.8), and
+// NewtonOptions::mixed_hessian to the steps along that curve (the
+// Hessian is the exact one again after every other step, for the
+// stability test, tangent() and second_derivative()).
 class ConstrainedNewtonSolver {
  public:
   ConstrainedNewtonSolver(Objective& objective, const AverageConstraint& constraint,

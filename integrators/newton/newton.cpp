@@ -162,12 +162,7 @@ NewtonResult NewtonSolver::solve(const NewtonCallbacks& callbacks) {
     set_no_unknowns(objective_.energy(), run.result);
     return run.result;
   }
-  // However the solve ends (an exception included), the objective's
-  // Hessian is the exact one again.
-  struct ExactHessianAtExit {
-    Objective& objective;
-    ~ExactHessianAtExit() { objective.use_exact_hessian(); }
-  } exact_at_exit{objective_};
+  const ExactHessianAtExit exact_at_exit(objective_);
   impl_->start(run);
   run.result.setup_seconds = seconds_since(start);
   int iteration = 0;

@@ -397,4 +397,43 @@ TEST_CASE(
   CHECK(problem.energy().total() < 1e-12);
 }
 
+TEST_CASE(
+    "Constrained Newton: the mixed Hessian after steps along the curve, the same equilibrium") {
+  int mixed_steps = 0, shifted_steps = 0;
+  std::vector<Eigen::Vector3d> end[2];
+  double energy[2] = {0.0, 0.0};
+  for (bool mixed : {false, true}) {
+    CAPTURE(mixed);
+    // The dome from a crumpled start: shifted steps (on the line) first.
+    LinkageProblem problem = dome_problem(3, 0.8);
+    std::mt19937 rng(11);
+    problem.set_free_dofs(problem.free_dofs() + random_vector(problem.num_free(), rng, 0.05));
+    LinkageObjective objective(problem);
+    const AverageConstraint c = average_opening_angle_constraint(problem);
+    NewtonOptions options;
+    options.gradient_tolerance = 1e-10;
+    options.mixed_hessian = mixed;
+    ConstrainedNewtonSolver solver(objective, c, options);
+    NewtonCallbacks callbacks;
+    callbacks.on_iteration = [&](const NewtonReport& r) {
+      if (r.iteration == 0) return;
+      // Unshifted steps follow the curve; shifted ones (and escapes) the line.
+      CHECK(problem.mixed_hessian() == (mixed && !r.shifted));
+      mixed_steps += problem.mixed_hessian() ? 1 : 0;
+      shifted_steps += r.shifted ? 1 : 0;
+    };
+    const ConstrainedNewtonResult r = solver.solve(c.value(problem.free_dofs()) + 0.4, callbacks);
+    CAPTURE(r.reason);
+    REQUIRE(r.converged());
+    CHECK(r.stable);
+    CHECK(!problem.mixed_hessian());  // the exact one for the tangent
+    end[mixed] = problem.vertex_positions();
+    energy[mixed] = problem.energy().total();
+  }
+  MESSAGE(mixed_steps << " mixed steps, " << shifted_steps << " shifted");
+  CHECK(mixed_steps > 0);
+  CHECK(energy[1] == doctest::Approx(energy[0]).epsilon(1e-9));
+  for (size_t v = 0; v < end[0].size(); ++v) CHECK((end[1][v] - end[0][v]).norm() < 1e-7);
+}
+
 }  // namespace xshell::test
