@@ -183,7 +183,6 @@ ConstrainedNewtonResult ConstrainedNewtonSolver::solve(double target,
 // Reports the start as iteration 0.
 void ConstrainedNewtonSolver::Impl::start(ConstrainedRun& run) {
   run.factorizations_at_start = factorizations();
-  objective.use_exact_hessian();
   final_factorization.q.resize(0);
   evaluator.sync();
   evaluator.clear_failures();

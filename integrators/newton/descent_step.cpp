@@ -17,10 +17,7 @@ DescentStepResult energy_descent_step(ObjectiveEvaluator& evaluator, CholeskySol
   if (capped) p *= options.max_step / length;
   const double slope = g0.dot(p);  // < 0: K is positive definite
   if (!(slope < 0.0)) return {};
-  if (options.mixed_hessian) {
-    evaluator.move_to(q0);
-    evaluator.objective().use_mixed_hessian(p);
-  }
+  if (options.mixed_hessian) evaluator.objective().use_mixed_hessian(p);  // at q0
 
   BacktrackingMerit energy;
   energy.phi0 = e0;
