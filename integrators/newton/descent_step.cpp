@@ -46,7 +46,7 @@ std::function<Eigen::VectorXd(double)> objective_path(ObjectiveEvaluator& evalua
   if (!evaluator.objective().begin_path(p, newton_step)) return {};
   return [&evaluator](double alpha) {
     Eigen::VectorXd q = evaluator.objective().path_point(alpha);
-    evaluator.sync();  // path_point moved the objective
+    evaluator.sync();  // path_point may have moved the objective
     return q;
   };
 }

@@ -88,16 +88,16 @@ void EdgeRotationPath::start_velocities(const LinkageProblem& problem) {
   longest_ = fastest > 0.0 ? kLargestTurn / fastest : std::numeric_limits<double>::infinity();
 }
 
-Eigen::VectorXd EdgeRotationPath::point(LinkageProblem& problem, double alpha) const {
+Eigen::VectorXd EdgeRotationPath::point(const LinkageProblem& problem, double alpha) const {
   if (alpha > longest_)
     throw std::domain_error("the step turns an edge by more than a quarter turn");
   Eigen::VectorXd q = q0_ + alpha * p_;
   // Beyond the full step (the expansion) the joints take the straight step.
   if (place_joints_ && alpha <= 1.0) joints_.place(q);
-  problem.set_free_dofs(q);
+  const std::vector<std::vector<Eigen::Vector3d>> placed = problem.nodes_at(q);
   std::vector<Eigen::Vector3d> nodes;
   for (int s = 0; s < problem.linkage().num_segments(); ++s) {
-    turn_segment(s, alpha, problem.linkage().segment(s).nodes(), nodes);
+    turn_segment(s, alpha, placed[static_cast<size_t>(s)], nodes);
     for (int i = 0; i < static_cast<int>(nodes.size()); ++i) {
       const Eigen::Vector3i& unknowns = node_unknowns_[s][i];
       if (unknowns[0] >= 0)

@@ -42,11 +42,11 @@ class EdgeRotationPath {
   // along the free step p; with place_joints the joints' positions follow
   // their turned chords up to alpha = 1 (docs/model.md section 9.8 says when).
   void start(const LinkageProblem& problem, const Eigen::VectorXd& p, bool place_joints = false);
-  // The free unknowns at alpha along the path. Moves the problem (to
-  // q0 + alpha p with the joints placed); throws std::domain_error where
-  // that is not a valid configuration, or where an edge or its frame would
-  // turn by more than a quarter turn from q0.
-  Eigen::VectorXd point(LinkageProblem& problem, double alpha) const;
+  // The free unknowns at alpha along the path (the problem stays where it
+  // is); throws std::domain_error where q0 + alpha p with the joints placed
+  // is not a valid configuration, or where an edge or its frame would turn
+  // by more than a quarter turn from q0.
+  Eigen::VectorXd point(const LinkageProblem& problem, double alpha) const;
 
  private:
   // The positions of segment s's nodes at alpha along the path, from their

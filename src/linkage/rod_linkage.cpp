@@ -278,34 +278,56 @@ void RodLinkage::record_theta_hints() {
     theta_hints_[s] = {rods_[s].thetas().front(), rods_[s].thetas().back()};
 }
 
-void RodLinkage::set_dofs(const Eigen::VectorXd& r, RodEnergy* energy) {
+void RodLinkage::check_joint_params(const Eigen::VectorXd& r) const {
   if (r.size() != num_dofs_) throw std::invalid_argument("RodLinkage::set_dofs: wrong size");
   for (int j = 0; j < num_joints(); ++j) {
-    const JointParams p = r.segment<9>(joint_offset_[j]);
-    const std::string problem = joints_[j].check_params(p);
+    const std::string problem = joints_[j].check_params(r.segment<9>(joint_offset_[j]));
     if (!problem.empty())
       throw std::domain_error("joint at vertex " + std::to_string(topology_.joints[j].vertex) +
                               ": " + problem);
-    joints_[j].set_params(p);
   }
+}
+
+Eigen::VectorXd RodLinkage::segment_dofs_at(int s, const Eigen::VectorXd& r) const {
+  const ElasticRod& rod = rods_[s];
+  Eigen::VectorXd q = rod.dofs();
+  for (int k = 0; k < q.size(); ++k)
+    if (slots_[s][k] >= 0) q[k] = r[slots_[s][k]];
+  for (int side = 0; side < 2; ++side) {
+    const int j = topology_.segments[s].joint[side];
+    if (j < 0) continue;
+    const TerminalEdge<double> t = terminal(s, side, r.data() + joint_offset_[j]);
+    const int node = terminal_edge_index(rod, side);
+    q.segment<3>(ElasticRod::node_dof(node)) = t.first.values();
+    q.segment<3>(ElasticRod::node_dof(node + 1)) = t.second.values();
+    q[rod.theta_dof(node)] = t.theta;
+  }
+  return q;
+}
+
+void RodLinkage::set_dofs(const Eigen::VectorXd& r, RodEnergy* energy) {
+  check_joint_params(r);
+  for (int j = 0; j < num_joints(); ++j) joints_[j].set_params(r.segment<9>(joint_offset_[j]));
   std::vector<RodEnergy> parts(energy ? rods_.size() : 0);
   for_each_segment(num_segments(), [&](int s) {
     ElasticRod& rod = rods_[s];
-    Eigen::VectorXd q = rod.dofs();
-    for (int k = 0; k < q.size(); ++k)
-      if (slots_[s][k] >= 0) q[k] = r[slots_[s][k]];
-    for (int side = 0; side < 2; ++side) {
-      if (topology_.segments[s].joint[side] < 0) continue;
-      const TerminalEdge<double> t = terminal(s, side);
-      const int node = terminal_edge_index(rod, side);
-      q.segment<3>(ElasticRod::node_dof(node)) = t.first.values();
-      q.segment<3>(ElasticRod::node_dof(node + 1)) = t.second.values();
-      q[rod.theta_dof(node)] = t.theta;
-    }
-    rod.set_dofs(q);
+    rod.set_dofs(segment_dofs_at(s, r));
     if (energy) parts[s] = rod.energy();
   });
   if (energy) *energy = sum_in_order(parts);
+}
+
+std::vector<std::vector<Eigen::Vector3d>> RodLinkage::nodes_at(const Eigen::VectorXd& r) const {
+  check_joint_params(r);
+  std::vector<std::vector<Eigen::Vector3d>> out(rods_.size());
+  for_each_segment(num_segments(), [&](int s) {
+    const Eigen::VectorXd q = segment_dofs_at(s, r);
+    std::vector<Eigen::Vector3d>& nodes = out[static_cast<size_t>(s)];
+    nodes.resize(static_cast<size_t>(rods_[s].num_nodes()));
+    for (int i = 0; i < rods_[s].num_nodes(); ++i)
+      nodes[static_cast<size_t>(i)] = q.segment<3>(ElasticRod::node_dof(i));
+  });
+  return out;
 }
 
 LinkageState RodLinkage::state() const {

@@ -148,6 +148,10 @@ class RodLinkage {
   // With energy, also the elastic energy at the new configuration, in the
   // same pass over the segments (while each one is in cache).
   void set_dofs(const Eigen::VectorXd& dofs, RodEnergy* energy = nullptr);
+  // The nodes of every segment, [segment][node], as set_dofs(dofs) would
+  // place them (a joint's terminal nodes by its parameters in `dofs`),
+  // without changing the state or updating a frame. Throws as set_dofs.
+  std::vector<std::vector<Eigen::Vector3d>> nodes_at(const Eigen::VectorXd& dofs) const;
 
   LinkageState state() const;
   // Full variables of every segment in the input configuration (as built),
@@ -217,6 +221,10 @@ class RodLinkage {
   // The same for the joint's parameters q (its own, or duals of them).
   template <class T>
   TerminalEdge<T> terminal(int s, int side, const T* q) const;
+  // Throws set_dofs' std::domain_error for a joint's parameters in `dofs`.
+  void check_joint_params(const Eigen::VectorXd& dofs) const;
+  // The full variables of segment s at the reduced `dofs`.
+  Eigen::VectorXd segment_dofs_at(int s, const Eigen::VectorXd& dofs) const;
   // Keeps every terminal theta as the branch hint of set_dofs (see theta_hints_).
   void record_theta_hints();
 

@@ -117,6 +117,11 @@ class LinkageProblem {
   // all reduced unknowns, zero on the fixed ones.
   Eigen::VectorXd with_fixed_zero(const Eigen::VectorXd& q) const;
   void set_free_dofs(const Eigen::VectorXd& q);
+  // The nodes of every segment, [segment][node], where set_free_dofs(q)
+  // would place them, without moving there (RodLinkage::nodes_at).
+  std::vector<std::vector<Eigen::Vector3d>> nodes_at(const Eigen::VectorXd& q) const {
+    return linkage_.nodes_at(dofs_with_free(q));
+  }
   // The same, returning energy().total() there (computed in the same pass).
   double set_free_dofs_and_energy(const Eigen::VectorXd& q);
   // All reduced unknowns (fixed ones included), e.g. for restarts.

@@ -75,4 +75,32 @@ TEST_CASE(
   CHECK(linkage.energy().total() == doctest::Approx(energy_here).epsilon(1e-12));
 }
 
+TEST_CASE("nodes_at places the nodes where set_dofs would, without moving the linkage") {
+  RodLinkage linkage(grid(3, 3, 0.2), test_options(RestShape::Input));
+  const Eigen::VectorXd start = linkage.dofs();
+  Eigen::VectorXd r = start;
+  std::srand(5);
+  r += 0.02 * Eigen::VectorXd::Random(r.size());  // joints, positions and thetas all moved
+  const std::vector<std::vector<Eigen::Vector3d>> placed = linkage.nodes_at(r);
+
+  CHECK(linkage.dofs() == start);
+  RodLinkage moved = linkage;
+  moved.set_dofs(r);
+  REQUIRE(placed.size() == static_cast<size_t>(linkage.num_segments()));
+  int differ = 0;
+  for (int s = 0; s < linkage.num_segments(); ++s) {
+    CAPTURE(s);
+    CHECK(placed[s] == moved.segment(s).nodes());
+    differ += placed[s] != linkage.segment(s).nodes() ? 1 : 0;
+  }
+  CHECK(differ == linkage.num_segments());
+
+  // An invalid joint: set_dofs' error, and still nothing moved.
+  const int j = 0;
+  r[linkage.joint_dof_offset(j) + kLengthA] = -1.0;
+  CHECK_THROWS_AS(linkage.nodes_at(r), std::domain_error);
+  CHECK_THROWS_AS(moved.set_dofs(r), std::domain_error);
+  CHECK(linkage.dofs() == start);
+}
+
 }  // namespace xshell::test
