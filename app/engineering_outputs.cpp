@@ -53,7 +53,8 @@ std::string refuted_warning(const StabilityAnalysis& stability) {
 
 EngineeringSnapshot engineering_results(
     LinkageProblem& problem, const Config& config, const Eigen::Vector3d& origin,
-    RunSummary& summary, const std::function<void(const StabilityProgress&)>& on_progress) {
+    RunSummary& summary, const std::function<void(const StabilityProgress&)>& on_progress,
+    CholeskySolver* factorized) {
   EngineeringResults results;
   results.reactions = support_reactions(problem);
   results.stresses = linkage_stresses(problem.linkage());
@@ -61,6 +62,7 @@ EngineeringSnapshot engineering_results(
 
   StabilityOptions options = stability_options(config);
   options.on_progress = on_progress;
+  options.factorized = factorized;
   // A deployment by the average angle ends held at it.
   std::optional<AverageConstraint> held;
   if (config.deployment && config.deployment->target == DeploymentTarget::AverageOpeningAngle) {

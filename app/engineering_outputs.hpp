@@ -22,10 +22,12 @@ namespace xshell {
 // (converged) state. origin: added to positions.
 // The stability analysis runs with config.analysis (its budget from now)
 // and reports to `on_progress` (may be empty); a budget that ran out is
-// said in the summary's warnings.
+// said in the summary's warnings. factorized: the solve's CHOLMOD solver
+// (StabilityOptions::factorized), or nullptr.
 EngineeringSnapshot engineering_results(
     LinkageProblem& problem, const Config& config, const Eigen::Vector3d& origin,
-    RunSummary& summary, const std::function<void(const StabilityProgress&)>& on_progress = {});
+    RunSummary& summary, const std::function<void(const StabilityProgress&)>& on_progress = {},
+    CholeskySolver* factorized = nullptr);
 
 // The VTK files of `snapshot` into `directory`. Throws OutputError when a
 // file cannot be written.

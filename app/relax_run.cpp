@@ -268,21 +268,23 @@ void record_result(const SolverRun& solved, bool interrupted, const std::string&
 // output failed) into the summary, and their files into `dir` unless it is
 // empty. Returns an output failure (empty: none); a failure of the
 // computation is a warning.
-std::string record_engineering(LoadedRun& run, const fs::path& dir, RunSummary& summary,
-                               RunProgress& progress) {
+std::string record_engineering(LoadedRun& run, const SolverRun& solved, const fs::path& dir,
+                               RunSummary& summary, RunProgress& progress) {
   try {
     EngineeringSnapshot snapshot;
     {
       const ScopedSeconds timer(&summary.timings.analysis);
       snapshot = engineering_results(
-          *run.problem, run.config, run.setup.origin, summary, [&](const StabilityProgress& p) {
+          *run.problem, run.config, run.setup.origin, summary,
+          [&](const StabilityProgress& p) {
             if (p.iteration == 0)
               progress.phase("analysis", p.stage);
             else
               progress.sample({"analysis", p.stage, p.iteration, p.energy, p.gradient, std::nullopt,
                                std::nullopt},
                               true);
-          });
+          },
+          solved.factorization.get());
     }
     const ScopedSeconds timer(&summary.timings.output);
     if (!dir.empty()) write_engineering_files(snapshot, run.config, dir);
@@ -305,7 +307,7 @@ std::string write_final_outputs(LoadedRun& run, const SolverRun& solved, RunOutp
   const fs::path dir = output_directory(run);
   std::string error = outputs && outputs->failed() ? outputs->error() : solved.output_error;
   const bool complete = summary.converged && !summary.interrupted && error.empty();
-  if (complete) error = record_engineering(run, dir, summary, progress);
+  if (complete) error = record_engineering(run, solved, dir, summary, progress);
   if (outputs) {
     progress.phase("output");
     const ScopedSeconds timer(&summary.timings.output);

@@ -90,7 +90,10 @@ SolverRun run_newton(const SolverOptions& solver, Objective& objective, const Ru
   // 63 iterations, 18 of them full steps at max_step; 55 with the cap
   // grown, the same equilibrium).
   options.grow_step_cap = true;
-  run.result = solve_newton(objective, options, callbacks);
+  NewtonSolver newton(objective, options);
+  run.result = newton.solve(callbacks);
+  run.factorization = std::make_shared<CholeskySolver>();
+  newton.swap_cholesky(*run.factorization);
   return run;
 }
 

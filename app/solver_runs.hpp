@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +50,10 @@ struct SolverRun {
   // A deployment's plot being drawn while the final outputs are written:
   // waits for it and names it in the summary's deployment (empty: none).
   std::function<void(DeploymentSummary&)> finish_plot;
+  // Newton's CHOLMOD solver after the solve, the final state's Hessian
+  // factorized by its stability test: the analysis goes on in it (null for
+  // the other methods and the deployments).
+  std::shared_ptr<CholeskySolver> factorization;
 };
 
 // The solvers' options from the configuration's "solver".

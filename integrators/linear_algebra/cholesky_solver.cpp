@@ -20,8 +20,7 @@ namespace xshell {
 // with the natural ordering (the permutation is then ours): CHOLMOD uses it
 // in place. Solves apply P to the right-hand side and P^T to the solution.
 struct CholeskySolver::Impl {
-  // What analyze() derives from an input's pattern; never changed after,
-  // so that solvers that adopt the analysis share it.
+  // What analyze() derives from an input's pattern; never changed after.
   struct Pattern {
     std::vector<int> source_outer, source_inner;  // the analyzed input's pattern
     // tril(P A P^T) plus the full diagonal, in CHOLMOD's (stype = -1)
@@ -36,10 +35,10 @@ struct CholeskySolver::Impl {
   CholmodFactor factor;
   CholmodDense x{*common}, y{*common}, e{*common};  // cholmod_solve2 workspaces
 
-  std::shared_ptr<const Pattern> pattern;  // of the last analyzed (or adopted) input
+  std::unique_ptr<const Pattern> pattern;  // of the last analyzed input
   Eigen::VectorXd values;                  // of tril(P A P^T), in pattern->lower's layout
   // The values of the last factorization, and its status when it ran to
-  // the end (none after an analysis or an adoption): the next values are
+  // the end (none after an analysis): the next values are
   // filled into `values`, and the two swap after a factorization.
   Eigen::VectorXd factorized_values;
   std::optional<FactorizationStatus> factorized_status;
@@ -145,7 +144,7 @@ void CholeskySolver::Impl::analyze(const Eigen::SparseMatrix<double>& A) {
   factor.reset();
   pattern.reset();
   ready = false;
-  auto p = std::make_shared<Pattern>();
+  auto p = std::make_unique<Pattern>();
   Eigen::SparseMatrix<double> upper = upper_pattern(A);
   p->permutation = fill_reducing_permutation(upper, common->get());
   std::vector<int> inverse(static_cast<size_t>(n));
@@ -248,21 +247,6 @@ FactorizationStatus CholeskySolver::factorize(const Eigen::SparseMatrix<double>&
   if (!ok || c->status < CHOLMOD_OK) throw std::runtime_error("cholmod_factorize failed");
   s.ready = true;
   return s.remember(FactorizationStatus::PositiveDefinite);
-}
-
-void CholeskySolver::adopt_analysis(const CholeskySolver& other) {
-  const Impl& o = *other.impl_;
-  Impl& s = *impl_;
-  if (!o.factor || !o.pattern || &o == &s) return;
-  cholmod_factor* copy = cholmod_copy_factor(o.factor.get(), s.common->get());
-  if (copy == nullptr) throw std::runtime_error("cholmod_copy_factor failed");
-  s.factor = CholmodFactor(copy, *s.common);
-  s.ready = false;
-  s.pattern = o.pattern;
-  s.values.setZero(o.values.size());
-  s.factorized_values.resize(0);
-  s.factorized_status.reset();
-  s.permuted.resize(o.size());
 }
 
 bool CholeskySolver::factorized() const { return impl_->ready; }

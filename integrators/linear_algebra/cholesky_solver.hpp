@@ -47,12 +47,6 @@ class CholeskySolver {
   FactorizationStatus factorize(const Eigen::SparseMatrix<double>& A,
                                 const Eigen::VectorXd* diagonal_shift = nullptr);
 
-  // Takes over `other`'s symbolic analysis (a copy: the pattern, ordering
-  // and factor structure it last analyzed), so that the next factorize() of
-  // a matrix with that pattern needs none of its own. Nothing when `other`
-  // has analyzed nothing. Not counted in stats().analyses.
-  void adopt_analysis(const CholeskySolver& other);
-
   // True after a factorize() that returned PositiveDefinite.
   bool factorized() const;
 

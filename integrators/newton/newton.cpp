@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "integrators/common/objective_evaluator.hpp"
 #include "integrators/common/wall_clock.hpp"
@@ -104,8 +105,8 @@ NewtonSolver::NewtonSolver(Objective& objective, NewtonOptions options)
 
 NewtonSolver::~NewtonSolver() = default;
 
-void NewtonSolver::adopt_analysis(const CholeskySolver& analysed) {
-  if (impl_) impl_->system.cholesky().adopt_analysis(analysed);
+void NewtonSolver::swap_cholesky(CholeskySolver& other) {
+  if (impl_) std::swap(impl_->system.cholesky(), other);
 }
 
 CholeskyStats NewtonSolver::cholesky_stats() const {

@@ -155,10 +155,13 @@ class NewtonSolver {
   NewtonResult solve(const NewtonCallbacks& callbacks = {});
 
   const NewtonOptions& options() const { return options_; }
-  // Starts from `analysed`'s symbolic analysis (CholeskySolver::
-  // adopt_analysis): a solve whose Hessian has the pattern it last saw
-  // skips its own.
-  void adopt_analysis(const CholeskySolver& analysed);
+  // Exchanges the CHOLMOD solver with `other`: its symbolic analysis, its
+  // last factorization and its counters, moved, not copied. Lent before a
+  // solve, a solver whose Hessian has the pattern it last saw skips its
+  // own analysis (and a factorization of the same values); taken back
+  // after, it holds the final state's Hessian factorized by the stability
+  // test (unless that failed). No effect when n = 0.
+  void swap_cholesky(CholeskySolver& other);
   // Counters of the CHOLMOD solver kept across solves (all zero for n = 0).
   CholeskyStats cholesky_stats() const;
 

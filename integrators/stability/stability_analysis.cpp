@@ -27,8 +27,25 @@ struct StageSolve {
   bool shifted = false;  // some iterate's Hessian was indefinite
 };
 
+// Lends `solver` to a NewtonSolver for the length of a solve (its analysis
+// and last factorization reused, not copied), and takes it back, with the
+// final state's factorization, however the solve ends.
+class LentCholesky {
+ public:
+  LentCholesky(NewtonSolver& newton, CholeskySolver& solver) : newton_(newton), solver_(solver) {
+    newton_.swap_cholesky(solver_);
+  }
+  ~LentCholesky() { newton_.swap_cholesky(solver_); }
+  LentCholesky(const LentCholesky&) = delete;
+  LentCholesky& operator=(const LentCholesky&) = delete;
+
+ private:
+  NewtonSolver& newton_;
+  CholeskySolver& solver_;
+};
+
 StageSolve solve_in_stage(LinkageProblem& problem, const char* stage, const AverageConstraint* held,
-                          const StabilityOptions& options, const CholeskySolver& analysed,
+                          const StabilityOptions& options, CholeskySolver& analysed,
                           const std::function<void(const StabilityProgress&)>& report) {
   LinkageObjective objective(problem);
   NewtonOptions newton = options.unloaded_newton;
@@ -51,7 +68,7 @@ StageSolve solve_in_stage(LinkageProblem& problem, const char* stage, const Aver
     out.result = solver.solve(held->value(problem.free_dofs()), callbacks);
   } else {
     NewtonSolver solver(objective, newton);
-    solver.adopt_analysis(analysed);
+    const LentCholesky lent(solver, analysed);
     out.result = solver.solve(callbacks);
   }
   out.stopped = stop.load();
@@ -63,7 +80,7 @@ StageSolve solve_in_stage(LinkageProblem& problem, const char* stage, const Aver
 // Hessian on the way refutes it (a snap past a fold to a remote stable
 // state passes through unstable ones, and confirms it).
 void check_estimate(const LinkageProblem& problem, const StabilityOptions& options,
-                    const CholeskySolver& analysed,
+                    CholeskySolver& analysed,
                     const std::function<void(const StabilityProgress&)>& report,
                     StabilityAnalysis& out) {
   report({"buckling_check", 0, std::nullopt, std::nullopt});
@@ -105,9 +122,11 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
   };
   StabilityAnalysis out;
   const Eigen::SparseMatrix<double> loaded_hessian = problem.free_hessian();
-  // One CHOLMOD solver for H - sigma M and K_0: the same pattern, one
-  // symbolic analysis (a held state's reduced B^T K B has its own).
-  CholeskySolver solver;
+  // One CHOLMOD solver for H - sigma M, the stages' Newton solves and K_0:
+  // the same pattern, one symbolic analysis (a held state's reduced B^T K B
+  // has its own). The caller's, when it has H factorized already.
+  CholeskySolver own;
+  CholeskySolver& solver = options.factorized ? *options.factorized : own;
   report({"eigen_modes", 0, std::nullopt, std::nullopt});
   EigenModesOptions modes = options.modes;
   modes.deadline = options.deadline;
@@ -146,7 +165,8 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
     return out;
   }
   report({"buckling", 0, std::nullopt, std::nullopt});
-  // Newton's stability test there factorized K_0 (B^T K_0 B when held).
+  // Newton's stability test there factorized K_0 (B^T K_0 B when held):
+  // relaxed.stable says whether it is definite.
   out.buckling =
       held_buckling(unloaded.free_hessian(), loaded_hessian, relaxed.stable, options, solver);
   if (out.buckling.status == BucklingStatus::Found && options.check_margin > 0.0)

@@ -56,6 +56,10 @@ struct StabilityOptions {
   // the status "time_limit", and the later ones are skipped (the same).
   AnalysisDeadline deadline;
   std::function<void(const StabilityProgress&)> on_progress;  // optional
+  // A CHOLMOD solver that has analysed the loaded state's Hessian and may
+  // hold its factorization (Newton's stability test there), or nullptr:
+  // the analysis works in it, skipping that analysis and factorization.
+  CholeskySolver* factorized = nullptr;
 };
 
 struct StabilityAnalysis {

@@ -148,40 +148,6 @@ TEST_CASE("The factor's halves: A^-1 in two solves, and the standard form of S p
   }
 }
 
-TEST_CASE("A solver that adopts another's analysis factorizes that pattern without its own") {
-  const int n = 300;
-  const Eigen::SparseMatrix<double> A = random_symmetric(n, 4, 0.1, 31);
-  Eigen::SparseMatrix<double> B = A;  // the same pattern, other values
-  for (int j = 0; j < n; ++j) B.coeffRef(j, j) += 1.0 + j;
-  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 1.0, -1.0);
-  CholeskySolver analysed;
-  CholeskySolver adopting;
-  adopting.adopt_analysis(analysed);  // nothing analyzed yet: nothing taken
-  REQUIRE(analysed.factorize(A) == FactorizationStatus::PositiveDefinite);
-  adopting.adopt_analysis(analysed);
-  CHECK_FALSE(adopting.factorized());
-  REQUIRE(adopting.factorize(B) == FactorizationStatus::PositiveDefinite);
-  CHECK((B * adopting.solve(b) - b).norm() / b.norm() < 1e-10);
-  CHECK(adopting.stats().analyses == 0);
-  // The source is untouched: its factor still solves A.
-  CHECK((A * analysed.solve(b) - b).norm() / b.norm() < 1e-10);
-  // The two share the analysis, not the values: the source refactorized
-  // (no analysis of its own either) leaves the adopter's factor as it was.
-  REQUIRE(analysed.factorize(2.0 * A) == FactorizationStatus::PositiveDefinite);
-  CHECK(analysed.stats().analyses == 1);
-  CHECK((2.0 * A * analysed.solve(b) - b).norm() / b.norm() < 1e-10);
-  CHECK((B * adopting.solve(b) - b).norm() / b.norm() < 1e-10);
-  // Another pattern is analyzed as usual.
-  const Eigen::SparseMatrix<double> C = random_symmetric(n, 5, 0.1, 32);
-  REQUIRE(adopting.factorize(C) == FactorizationStatus::PositiveDefinite);
-  CHECK((C * adopting.solve(b) - b).norm() / b.norm() < 1e-10);
-  CHECK(adopting.stats().analyses == 1);
-  // and leaves the source's analysis alone.
-  REQUIRE(analysed.factorize(B) == FactorizationStatus::PositiveDefinite);
-  CHECK((B * analysed.solve(b) - b).norm() / b.norm() < 1e-10);
-  CHECK(analysed.stats().analyses == 1);
-}
-
 TEST_CASE("The same matrix factorized again costs no factorization, any other value does") {
   const int n = 200;
   const Eigen::SparseMatrix<double> A = random_symmetric(n, 4, 0.1, 41);
@@ -215,12 +181,6 @@ TEST_CASE("The same matrix factorized again costs no factorization, any other va
   CHECK_FALSE(solver.factorized());
   CHECK(solver.stats().factorizations == 5);
   CHECK(solver.stats().failed_factorizations == 1);
-  // An adopted analysis comes without values: its first factorization is one.
-  CholeskySolver adopting;
-  adopting.adopt_analysis(solver);
-  REQUIRE(adopting.factorize(A) == FactorizationStatus::PositiveDefinite);
-  CHECK(adopting.stats().factorizations == 1);
-  CHECK((A * adopting.solve(b) - b).norm() / b.norm() < 1e-10);
 }
 
 TEST_CASE("CholeskySolver reports indefinite and non-finite matrices") {

@@ -184,6 +184,37 @@ TEST_CASE("a NewtonSolver keeps its symbolic analysis across solves") {
   CHECK(solver.cholesky_stats().factorizations == first.factorizations + again.factorizations);
 }
 
+TEST_CASE("a NewtonSolver lends and takes back its CHOLMOD solver, analysis and factorization") {
+  StencilObjective chain = make_chain();
+  CholeskySolver taken;
+  {
+    NewtonSolver solver(chain, tight());
+    REQUIRE(solver.solve().converged());
+    solver.swap_cholesky(taken);
+    CHECK(solver.cholesky_stats().analyses == 0);  // it holds the empty one now
+  }
+  // The final state's Hessian, factorized by the stability test: again is
+  // no new factorization.
+  const CholeskyStats after_solve = taken.stats();
+  CHECK(after_solve.analyses == 1);
+  CHECK(taken.factorize(chain.hessian()) == FactorizationStatus::PositiveDefinite);
+  CHECK(taken.stats().factorizations == after_solve.factorizations);
+
+  // Lent to another solver of the same pattern: no analysis of its own.
+  Eigen::VectorXd q = chain.get();
+  q[4] += 0.01;
+  chain.set(q);
+  NewtonSolver other(chain, tight());
+  other.swap_cholesky(taken);
+  const NewtonResult again = other.solve();
+  REQUIRE(again.converged());
+  CHECK(again.iterations >= 1);
+  CHECK(other.cholesky_stats().analyses == 1);
+  CHECK(other.cholesky_stats().factorizations == after_solve.factorizations + again.factorizations);
+  other.swap_cholesky(taken);
+  CHECK(taken.stats().factorizations == after_solve.factorizations + again.factorizations);
+}
+
 TEST_CASE("Newton on the Euler column: saddle versus buckled minimum") {
   ColumnOptions straight;
   SUBCASE("started on the symmetric (straight) line, it converges to the saddle") {

@@ -161,6 +161,43 @@ TEST_CASE("A cantilever bent far: the linear estimate just above 1 is refuted, t
   CHECK(euler.buckling.load_factor * 0.5 == doctest::Approx(1.0).epsilon(2e-3));
 }
 
+TEST_CASE("The analysis continues in the solve's CHOLMOD solver: the same results, no analysis") {
+  // The Euler column: every stage runs (eigenmodes, the unloaded
+  // equilibrium, the buckling and its check).
+  const double p_cr = M_PI * M_PI / 4.0;
+  LinkageProblem column = cantilever_beam(60, Eigen::Vector3d(-0.5 * p_cr, 0, 0));
+  CholeskySolver solved;
+  {
+    LinkageObjective objective(column);
+    NewtonSolver newton(objective, tight_newton(1e-8, true));
+    REQUIRE(newton.solve().converged());
+    newton.swap_cholesky(solved);
+  }
+  const CholeskyStats before = solved.stats();
+  REQUIRE(before.analyses == 1);
+  LinkageProblem copy = column;
+  const StabilityAnalysis alone = analyse_stability(copy);
+  StabilityOptions options;
+  options.factorized = &solved;
+  const StabilityAnalysis continued = analyse_stability(column, options);
+
+  // The eigensolver, the buckling and the stages' Newton solves worked in
+  // it (the unloaded and check solves' factorizations counted there),
+  // with no symbolic analysis of their own.
+  CHECK(solved.stats().analyses == 1);
+  CHECK(solved.stats().solves > before.solves);
+  CHECK(solved.stats().factorizations > before.factorizations);
+  REQUIRE(continued.buckling.status == BucklingStatus::Found);
+  CHECK(alone.buckling.status == BucklingStatus::Found);
+  CHECK(continued.buckling.load_factor ==
+        doctest::Approx(alone.buckling.load_factor).epsilon(1e-10));
+  REQUIRE(continued.modes.values.size() == alone.modes.values.size());
+  for (Eigen::Index k = 0; k < alone.modes.values.size(); ++k)
+    CHECK(continued.modes.values[k] == doctest::Approx(alone.modes.values[k]).epsilon(1e-10));
+  CHECK(continued.check_factor == alone.check_factor);
+  CHECK(continued.stable_at_check == alone.stable_at_check);
+}
+
 namespace {
 
 // An orthonormal basis (n x (n-1)) of the plane a . q = 0, dense.
