@@ -92,7 +92,7 @@ SolverRun run_newton(const SolverOptions& solver, Objective& objective, const Ru
   options.grow_step_cap = true;
   NewtonSolver newton(objective, options);
   run.result = newton.solve(callbacks);
-  run.factorization = std::make_shared<CholeskySolver>();
+  run.factorization = std::make_unique<CholeskySolver>();
   newton.swap_cholesky(*run.factorization);
   return run;
 }

@@ -53,7 +53,7 @@ struct SolverRun {
   // Newton's CHOLMOD solver after the solve, the final state's Hessian
   // factorized by its stability test: the analysis goes on in it (null for
   // the other methods and the deployments).
-  std::shared_ptr<CholeskySolver> factorization;
+  std::unique_ptr<CholeskySolver> factorization;
 };
 
 // The solvers' options from the configuration's "solver".

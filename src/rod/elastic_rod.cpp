@@ -258,7 +258,8 @@ Eigen::VectorXd ElasticRod::linearized_axial_forces(const Eigen::VectorXd& veloc
     const Eigen::Vector3d de =
         velocity.segment<3>(node_dof(j + 1)) - velocity.segment<3>(node_dof(j));
     const double k = stiffness_.stretching * stretching_share_[j];
-    out[j] = axial_force(j) + k * tangent(j).dot(de) / rest_length_[j];
+    out[j] =
+        xshell::axial_force(edge(j), rest_length_[j], k) + k * tangent(j).dot(de) / rest_length_[j];
   }
   return out;
 }

@@ -1,5 +1,7 @@
 #include "rod_forces.hpp"
 
+#include "stretching.hpp"
+
 namespace xshell {
 
 SectionForces vertex_moments(const ElasticRod& rod, int i) {
@@ -23,7 +25,7 @@ std::vector<SectionForces> edge_forces(const ElasticRod& rod) {
   std::vector<SectionForces> out(n);
   for (int j = 0; j < n; ++j) {
     SectionForces& f = out[j];
-    f.axial = rod.stiffness().stretching * (rod.edge(j).norm() / rod.rest_lengths()[j] - 1.0);
+    f.axial = axial_force(rod.edge(j), rod.rest_lengths()[j], rod.stiffness().stretching);
     int count = 0;
     for (int i : {j, j + 1}) {
       if (i < 1 || i > n - 1) continue;
