@@ -45,7 +45,9 @@ struct DescentStepOptions {
   // (Objective::begin_path's newton_step).
   bool newton_step = false;
   // On a path, a full step that was accepted is doubled while the merit
-  // keeps falling (with the Armijo test), up to this multiple: Newton's
+  // keeps falling (with the Armijo test), up to this multiple (not tried
+  // where the quadratic through the start's merit and slope and the full
+  // step's merit says that doubling cannot fall further): Newton's
   // quadratic model measures curvature along the line, which a curved
   // valley (a buckled column turning its plane, docs/model.md section 9.8)
   // has and the path does not, so the Newton step can fall far short.
