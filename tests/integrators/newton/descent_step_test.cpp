@@ -2,10 +2,11 @@
 // a full step is doubled only where the quadratic through the start, its
 // slope and the full step's energy falls further.
 
+#include "integrators/newton/descent_step.hpp"
+
 #include <doctest/doctest.h>
 
 #include "integrators/common/objective_evaluator.hpp"
-#include "integrators/newton/descent_step.hpp"
 #include "integrators/toy_objectives.hpp"
 
 namespace xshell {
