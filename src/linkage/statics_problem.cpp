@@ -139,10 +139,18 @@ const Eigen::SparseMatrix<double>& LinkageProblem::free_hessian() {
 
 void LinkageProblem::use_mixed_hessian(const Eigen::VectorXd& p) {
   const Eigen::VectorXd v = with_fixed_zero(p);
-  hessian_axial_forces_.resize(linkage_.num_segments());
-  for (int s = 0; s < linkage_.num_segments(); ++s)
-    hessian_axial_forces_[s] =
-        linkage_.segment(s).linearized_axial_forces(linkage_.full_velocity(s, v));
+  std::vector<Eigen::VectorXd> forces(linkage_.num_segments());
+  double change = 0.0;
+  for (int s = 0; s < linkage_.num_segments(); ++s) {
+    const Eigen::VectorXd segment_velocity = linkage_.full_velocity(s, v);
+    forces[s] = linkage_.segment(s).linearized_axial_forces(segment_velocity);
+    change = std::max(change, linkage_.segment(s).largest_edge_change(segment_velocity));
+  }
+  if (change <= kNegligibleEdgeChange) {
+    use_exact_hessian();
+    return;
+  }
+  hessian_axial_forces_ = std::move(forces);
   hessian_version_ = -1;
 }
 

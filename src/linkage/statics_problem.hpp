@@ -150,8 +150,13 @@ class LinkageProblem {
   // forces linearized along the free step p from the current configuration
   // (RodLinkage::full_velocity of p, ElasticRod::linearized_axial_forces),
   // whatever configuration it is evaluated at, until use_exact_hessian().
-  // The energy and gradient stay exact.
+  // The energy and gradient stay exact. A step that changes no edge by more
+  // than kNegligibleEdgeChange of its rest length keeps (or makes) the
+  // Hessian exact: there the two differ by at most that fraction of an
+  // edge's axial stiffness (by its square at the full step), and a solve
+  // converging in such a step needs the exact one for its stability test.
   void use_mixed_hessian(const Eigen::VectorXd& p);
+  static constexpr double kNegligibleEdgeChange = 1e-4;
   void use_exact_hessian();
   bool mixed_hessian() const { return !hessian_axial_forces_.empty(); }
   Eigen::VectorXd gradient_weights() const;

@@ -1,5 +1,6 @@
 #include "elastic_rod.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "stretching.hpp"
@@ -261,6 +262,15 @@ Eigen::VectorXd ElasticRod::linearized_axial_forces(const Eigen::VectorXd& veloc
     out[j] =
         xshell::axial_force(edge(j), rest_length_[j], k) + k * tangent(j).dot(de) / rest_length_[j];
   }
+  return out;
+}
+
+double ElasticRod::largest_edge_change(const Eigen::VectorXd& velocity) const {
+  double out = 0.0;
+  for (int j = 0; j < num_edges(); ++j)
+    out = std::max(
+        out, (velocity.segment<3>(node_dof(j + 1)) - velocity.segment<3>(node_dof(j))).norm() /
+                 rest_length_[j]);
   return out;
 }
 

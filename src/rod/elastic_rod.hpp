@@ -129,6 +129,9 @@ class ElasticRod {
   // The axial forces linearized along a velocity v of the full variables
   // (num_dofs()): N_j + k_j t_j . (v_{j+1} - v_j) / l_j, one per edge.
   Eigen::VectorXd linearized_axial_forces(const Eigen::VectorXd& velocity) const;
+  // max_j |v_{j+1} - v_j| / l_j: the largest change of an edge vector along
+  // a velocity v of the full variables, relative to its rest length.
+  double largest_edge_change(const Eigen::VectorXd& velocity) const;
   // Structure of the Hessian: true where some stencil can make an entry
   // nonzero (num_dofs() square, symmetric). Depends on num_edges() only.
   Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> hessian_pattern() const;

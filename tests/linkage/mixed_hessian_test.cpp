@@ -106,4 +106,35 @@ TEST_CASE("Mixed linkage Hessian: exact plus the Hessian of sum_j (sigma_j - N_j
   CHECK(checked == 4 * 6);
 }
 
+TEST_CASE("A step that changes no edge by more than 1e-4 of its length keeps the Hessian exact") {
+  std::mt19937 rng(5);
+  LinkageProblem problem(RodLinkage(grid(3, 3, 0.3), test_options(RestShape::Straight)),
+                         StaticsSetup{});
+  problem.set_free_dofs(problem.free_dofs() + random_vector(problem.num_free(), rng, 0.03));
+  problem.rebase();
+  const Eigen::MatrixXd exact(problem.free_hessian());
+  const Eigen::VectorXd direction = random_vector(problem.num_free(), rng);
+  // The largest relative edge change along the direction, as the problem
+  // measures it.
+  const RodLinkage& l = problem.linkage();
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(l.num_dofs());
+  for (int i = 0; i < problem.num_free(); ++i) full[problem.free_indices()[i]] = direction[i];
+  double change = 0.0;
+  for (int s = 0; s < l.num_segments(); ++s)
+    change = std::max(change, l.segment(s).largest_edge_change(l.full_velocity(s, full)));
+  REQUIRE(change > 0.0);
+  const double negligible = LinkageProblem::kNegligibleEdgeChange / change;
+
+  problem.use_mixed_hessian(0.5 * negligible * direction);
+  CHECK(!problem.mixed_hessian());
+  CHECK((Eigen::MatrixXd(problem.free_hessian()) - exact).cwiseAbs().maxCoeff() == 0.0);
+  problem.use_mixed_hessian(2.0 * negligible * direction);
+  CHECK(problem.mixed_hessian());
+  CHECK((Eigen::MatrixXd(problem.free_hessian()) - exact).cwiseAbs().maxCoeff() > 0.0);
+  // And back: a negligible step after a mixed one makes it exact again.
+  problem.use_mixed_hessian(0.5 * negligible * direction);
+  CHECK(!problem.mixed_hessian());
+  CHECK((Eigen::MatrixXd(problem.free_hessian()) - exact).cwiseAbs().maxCoeff() == 0.0);
+}
+
 }  // namespace xshell::test
