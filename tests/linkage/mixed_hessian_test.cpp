@@ -117,8 +117,7 @@ TEST_CASE("A step that changes no edge by more than 1e-4 of its length keeps the
   // The largest relative edge change along the direction, as the problem
   // measures it.
   const RodLinkage& l = problem.linkage();
-  Eigen::VectorXd full = Eigen::VectorXd::Zero(l.num_dofs());
-  for (int i = 0; i < problem.num_free(); ++i) full[problem.free_indices()[i]] = direction[i];
+  const Eigen::VectorXd full = problem.with_fixed_zero(direction);
   double change = 0.0;
   for (int s = 0; s < l.num_segments(); ++s)
     change = std::max(change, l.segment(s).largest_edge_change(l.full_velocity(s, full)));
