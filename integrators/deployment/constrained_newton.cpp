@@ -470,8 +470,15 @@ bool ConstrainedNewtonSolver::Impl::escape_saddle(ConstrainedRun& run) {
   const NegativeMode mode = negative_mode(Hz, Mz, reduced, escape);
   if (!mode.found || !mode.negative) return false;
   Eigen::VectorXd d = constraint.expand(mode.vector);
-  d /= d.lpNorm<Eigen::Infinity>();  // largest entry of magnitude 1, the sign kept
-  if (!(step_downhill(objective, d, escape) > 0.0)) return false;
+  const double scale = d.lpNorm<Eigen::Infinity>();
+  d /= scale;  // largest entry of magnitude 1, the sign kept
+  // The bend on the null space (z = mode / scale: d = B z), carried back.
+  const Eigen::VectorXd third = third_derivative_along(objective, d);
+  const Eigen::VectorXd wz =
+      bend_of_mode(Hz, Mz, mode.eigenvalue, mode.vector / scale,
+                   third.size() ? constraint.restrict(third) : third, reduced);
+  const Eigen::VectorXd bend = wz.size() ? constraint.expand(wz) : wz;
+  if (!(step_downhill(objective, d, escape, bend) > 0.0)) return false;
   SaddleRecord saddle;
   saddle.energy = e0;
   saddle.lowest_eigenvalue = mode.eigenvalue;

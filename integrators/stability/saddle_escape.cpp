@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "integrators/deployment/path_predictor.hpp"
 #include "integrators/stability/eigen_modes.hpp"
 
 namespace xshell {
@@ -17,12 +18,18 @@ constexpr double kNegligibleBias = 1e-8;
 // the first trial does not lower it.
 constexpr int kMaxDoublings = 24;
 constexpr int kMaxHalvings = 30;
+// The difference step of D3E[d, d] (d's largest entry 1): the second
+// difference's truncation error O(1e-6) against its round-off, about
+// 1e-16 |g| / 1e-6.
+constexpr double kBendStep = 1e-3;
 
-// The energy at q0 + t d, or +inf where the configuration is invalid.
+// The energy at q0 + t d + t^2 w (w empty: none), or +inf where the
+// configuration is invalid.
 double energy_along(Objective& objective, const Eigen::VectorXd& q0, const Eigen::VectorXd& d,
-                    double t) {
+                    const Eigen::VectorXd& w, double t) {
   try {
-    const double e = objective.set_and_energy(q0 + t * d);
+    const double e = objective.set_and_energy(
+        w.size() == 0 ? Eigen::VectorXd(q0 + t * d) : Eigen::VectorXd(q0 + t * d + t * t * w));
     return std::isfinite(e) ? e : INFINITY;
   } catch (const std::domain_error&) {
     return INFINITY;
@@ -32,16 +39,16 @@ double energy_along(Objective& objective, const Eigen::VectorXd& q0, const Eigen
 // The amplitude t > 0 of the lowest energy among the trials (0 when no
 // trial fell below `floor`), with the objective left anywhere.
 double best_amplitude(Objective& objective, const Eigen::VectorXd& q0, const Eigen::VectorXd& d,
-                      double floor) {
+                      const Eigen::VectorXd& w, double floor) {
   const double t0 = 1e-3 * std::max(1.0, q0.lpNorm<Eigen::Infinity>());
   double t = t0, best_t = 0.0, best_e = floor;
   for (int k = 0; k < kMaxHalvings && best_t == 0.0; ++k, t *= 0.5) {
-    const double e = energy_along(objective, q0, d, t);
+    const double e = energy_along(objective, q0, d, w, t);
     if (e < best_e) best_e = e, best_t = t;
   }
   if (best_t != t0) return best_t;  // found by halving (or nothing found)
   for (int k = 0; k < kMaxDoublings; ++k) {
-    const double e = energy_along(objective, q0, d, 2.0 * best_t);
+    const double e = energy_along(objective, q0, d, w, 2.0 * best_t);
     if (!(e < best_e)) break;
     best_e = e;
     best_t *= 2.0;
@@ -82,13 +89,44 @@ NegativeMode negative_mode(const Eigen::SparseMatrix<double>& H, const Eigen::Ve
 }
 
 double step_downhill(Objective& objective, const Eigen::VectorXd& direction,
-                     const SaddleEscapeOptions& options) {
+                     const SaddleEscapeOptions& options, const Eigen::VectorXd& bend) {
   const Eigen::VectorXd q0 = objective.get();
   const double e0 = objective.energy();
   const double t =
-      best_amplitude(objective, q0, direction, e0 - options.energy_noise * std::abs(e0));
-  objective.set(q0 + t * direction);
+      best_amplitude(objective, q0, direction, bend, e0 - options.energy_noise * std::abs(e0));
+  objective.set(bend.size() == 0 ? Eigen::VectorXd(q0 + t * direction)
+                                 : Eigen::VectorXd(q0 + t * direction + t * t * bend));
   return t;
+}
+
+Eigen::VectorXd third_derivative_along(Objective& objective, const Eigen::VectorXd& d) {
+  const Eigen::VectorXd q0 = objective.get();
+  Eigen::VectorXd third;
+  try {
+    third = gradient_second_difference(
+        [&](const Eigen::VectorXd& x) {
+          objective.set(x);
+          return objective.gradient();
+        },
+        q0, d, kBendStep);
+  } catch (const std::domain_error&) {
+    objective.set(q0);
+    return {};
+  }
+  return third.allFinite() ? third : Eigen::VectorXd();
+}
+
+Eigen::VectorXd bend_of_mode(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
+                             double eigenvalue, const Eigen::VectorXd& mode,
+                             const Eigen::VectorXd& third, CholeskySolver& solver) {
+  if (third.size() != H.rows() || !(eigenvalue < 0.0)) return {};
+  Eigen::SparseMatrix<double> shifted = H;
+  for (Eigen::Index i = 0; i < shifted.rows(); ++i)
+    shifted.coeffRef(i, i) -= 2.0 * eigenvalue * mass[i];
+  if (solver.factorize(shifted) != FactorizationStatus::PositiveDefinite) return {};
+  Eigen::VectorXd w = -0.5 * solver.solve(third);
+  w -= (mode.dot(mass.cwiseProduct(w)) / mode.dot(mass.cwiseProduct(mode))) * mode;
+  return w.allFinite() ? w : Eigen::VectorXd();
 }
 
 EscapeResult escape_saddle(Objective& objective, const Eigen::SparseMatrix<double>& H,
@@ -104,7 +142,9 @@ EscapeResult escape_saddle(Objective& objective, const Eigen::SparseMatrix<doubl
     return out;
   }
   out.mode = mode.vector;
-  out.amplitude = step_downhill(objective, out.mode, options);
+  const Eigen::VectorXd bend = bend_of_mode(H, mass, mode.eigenvalue, out.mode,
+                                            third_derivative_along(objective, out.mode), solver);
+  out.amplitude = step_downhill(objective, out.mode, options, bend);
   out.outcome = out.amplitude > 0.0 ? EscapeOutcome::Escaped : EscapeOutcome::NoDescent;
   return out;
 }

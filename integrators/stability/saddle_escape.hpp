@@ -23,9 +23,18 @@
 // along the direction), the sign makes phi's largest entry positive, so the
 // result never depends on round-off.
 //
-// The step: q = q0 + t phi (phi scaled to a largest entry of 1), t doubling
-// from 1e-3 max(1, |q0|_inf) while the energy falls (halving first while
-// the first trial does not lower it), the lowest energy of the trials kept.
+// The step follows the bifurcating branch to second order,
+//   q = q0 + t phi + t^2 w,   H w = -1/2 P D3E[phi, phi]
+// (phi scaled to a largest entry of 1, P removing phi's component, H
+// shifted by -2 lambda M to be definite): along the straight line q0 + t
+// phi the rods stretch at second order and the energy rises again after a
+// short step (manta_ray's deployment: 1 mm and 0.08 of the 95 energy
+// units down to the buckled state; along the bend 31 mm and 61 units),
+// and shifted Newton steps crept the rest of the way. t doubles from
+// 1e-3 max(1, |q0|_inf) while the energy falls (halving first while the
+// first trial does not lower it), the lowest energy of the trials kept;
+// without w (the straight line) when D3E or the factorization is not
+// available (docs/model.md 9.5).
 #pragma once
 
 #include <Eigen/Core>
@@ -85,7 +94,21 @@ NegativeMode negative_mode(const Eigen::SparseMatrix<double>& H, const Eigen::Ve
 // The step q0 + t d (the trials above) from the objective's state q0;
 // returns t (0: no trial lowered the energy, the objective back at q0).
 double step_downhill(Objective& objective, const Eigen::VectorXd& direction,
-                     const SaddleEscapeOptions& options);
+                     const SaddleEscapeOptions& options, const Eigen::VectorXd& bend = {});
+
+// The bend: D3E[d, d] at the objective's state, by the gradient's central
+// second difference (step 1e-3; d scaled to a largest entry of 1), the
+// objective left there; empty when a point of the difference is invalid
+// or a value not finite.
+Eigen::VectorXd third_derivative_along(Objective& objective, const Eigen::VectorXd& d);
+
+// The bend w = -1/2 (H - 2 lambda M)^-1 third, without its component along
+// the mode (M-orthogonal), with `solver` (its symbolic analysis reused);
+// H - 2 lambda M is positive definite when lambda is H's lowest eigenvalue.
+// Empty when third is, lambda >= 0, or the factorization fails.
+Eigen::VectorXd bend_of_mode(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
+                             double eigenvalue, const Eigen::VectorXd& mode,
+                             const Eigen::VectorXd& third, CholeskySolver& solver);
 
 // phi signed by the branch rule above (bias . phi > 0, else largest entry
 // positive) and scaled to a largest entry of magnitude 1.

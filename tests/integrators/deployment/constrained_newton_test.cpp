@@ -87,6 +87,47 @@ class Buckling : public Objective {
   Eigen::SparseMatrix<double> H_;
 };
 
+// Buckling with a stiff unknown y that the mode bends at second order:
+//   E = (u - v)^2 + K (y - w^2)^2 + (w^2 - A)^2 + A^2,
+// the same saddle (w = y = 0) and minima (w = +/- sqrt(A), y = A), now at
+// the ends of a parabolic valley: along the straight line in w the energy
+// stays above 2 A^2 - A^2 / (K + 1).
+class BentBuckling : public Objective {
+ public:
+  static constexpr double K = 100.0;
+  Eigen::Index size() const override { return 4; }
+  Eigen::VectorXd get() const override { return q_; }
+  void set(const Eigen::VectorXd& q) override { q_ = q; }
+  double energy() const override {
+    const double d = q_[0] - q_[1], A = 0.5 * (q_[0] + q_[1]), w = q_[2];
+    const double r = w * w - A, s = q_[3] - w * w;
+    return d * d + K * s * s + r * r + A * A;
+  }
+  Eigen::VectorXd gradient() const override {
+    const double d = q_[0] - q_[1], A = 0.5 * (q_[0] + q_[1]), w = q_[2];
+    const double r = w * w - A, s = q_[3] - w * w, dA = -2.0 * r + 2.0 * A;
+    return Eigen::Vector4d(2.0 * d + 0.5 * dA, -2.0 * d + 0.5 * dA, 4.0 * w * r - 4.0 * K * w * s,
+                           2.0 * K * s);
+  }
+  const Eigen::SparseMatrix<double>& hessian() override {
+    const double A = 0.5 * (q_[0] + q_[1]), w = q_[2], r = w * w - A, s = q_[3] - w * w;
+    const double aw = 0.5 * (-4.0 * w);
+    const double ww = 4.0 * r + 8.0 * w * w - 4.0 * K * s + 8.0 * K * w * w;
+    Eigen::Matrix4d H;
+    H << 3.0, -1.0, aw, 0.0,  //
+        -1.0, 3.0, aw, 0.0,   //
+        aw, aw, ww, -4.0 * K * w, 0.0, 0.0, -4.0 * K * w, 2.0 * K;
+    H_ = H.sparseView(0.0, 0.0);
+    return H_;
+  }
+  Eigen::VectorXd gradient_weights() const override { return Eigen::VectorXd::Ones(4); }
+  Eigen::VectorXd mass() const override { return Eigen::VectorXd::Ones(4); }
+
+ private:
+  Eigen::VectorXd q_ = Eigen::Vector4d(0.5, 0.5, 0.0, 0.0);
+  Eigen::SparseMatrix<double> H_;
+};
+
 // Two averaged unknowns u, v (A = (u + v) / 2) and w, a curved path:
 //   E = (u - v)^2 + (w - A^2)^2 + s A^2,
 // whose constrained equilibrium at A is u = v = A, w = A^2: q''(A) =
@@ -266,6 +307,33 @@ TEST_CASE("Constrained Newton leaves a symmetric saddle along negative curvature
     ++cases;
   }
   CHECK(cases == 2);
+}
+
+TEST_CASE("Constrained Newton's escape from a saddle follows the bent branch to its well") {
+  BentBuckling objective;
+  const AverageConstraint c(4, {0, 1}, {-1, 0}, 2, 0.0);
+  NewtonOptions options;
+  options.gradient_tolerance = 1e-12;
+  ConstrainedNewtonSolver solver(objective, c, options);
+  solver.max_saddle_escapes = 1;
+  Eigen::VectorXd escaped_to;
+  NewtonCallbacks callbacks;
+  callbacks.on_iteration = [&](const NewtonReport&) {
+    if (escaped_to.size() == 0 && objective.get()[2] != 0.0) escaped_to = objective.get();
+  };
+  const ConstrainedNewtonResult r = solver.solve(1.0, callbacks);  // the saddle at A = 1
+  CAPTURE(r.reason);
+  REQUIRE(r.converged());
+  CHECK(r.stable);
+  CHECK(r.saddle_escapes == 1);
+  REQUIRE(escaped_to.size() == 4);
+  // The straight line stops at |w| = (K + 1)^-1/2, about 0.1; the bend
+  // y ~ w^2 reaches the well's neighbourhood in the escape itself.
+  CHECK(std::abs(escaped_to[2]) > 0.9);
+  CHECK(escaped_to[3] == doctest::Approx(escaped_to[2] * escaped_to[2]).epsilon(0.05));
+  CHECK(std::abs(objective.get()[2]) == doctest::Approx(1.0).epsilon(1e-10));
+  CHECK(objective.get()[3] == doctest::Approx(1.0).epsilon(1e-10));
+  CHECK(r.energy == doctest::Approx(1.0));
 }
 
 TEST_CASE("Constrained Newton leaves a saddle it converges to linearly before reaching it") {

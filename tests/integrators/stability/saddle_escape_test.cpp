@@ -200,7 +200,61 @@ class DoubleWell : public Objective {
   Eigen::SparseMatrix<double> H_;
 };
 
+// E = K (y - x^2)^2 + (x^2 - 1)^2: a saddle at the origin (curvature -4
+// along x, 2K along y) between the minima (+-1, 1), at the ends of a
+// parabolic valley. Along the straight line (t, 0) the stiff term rises as
+// K t^4: its lowest energy is 1 - 1 / (K + 1), at |t| = (K + 1)^-1/2.
+class CurvedValley : public Objective {
+ public:
+  static constexpr double K = 100.0;
+  Eigen::Index size() const override { return 2; }
+  Eigen::VectorXd get() const override { return q_; }
+  void set(const Eigen::VectorXd& q) override { q_ = q; }
+  double energy() const override {
+    const double x = q_[0], s = q_[1] - x * x, r = x * x - 1.0;
+    return K * s * s + r * r;
+  }
+  Eigen::VectorXd gradient() const override {
+    const double x = q_[0], s = q_[1] - x * x, r = x * x - 1.0;
+    return Eigen::Vector2d(-4.0 * K * x * s + 4.0 * x * r, 2.0 * K * s);
+  }
+  const Eigen::SparseMatrix<double>& hessian() override {
+    const double x = q_[0], s = q_[1] - x * x, r = x * x - 1.0;
+    Eigen::Matrix2d H;
+    H << -4.0 * K * s + 8.0 * K * x * x + 4.0 * r + 8.0 * x * x, -4.0 * K * x,  //
+        -4.0 * K * x, 2.0 * K;
+    H_ = H.sparseView(0.0, 0.0);
+    return H_;
+  }
+  Eigen::VectorXd gradient_weights() const override { return Eigen::VectorXd::Ones(2); }
+  Eigen::VectorXd mass() const override { return Eigen::VectorXd::Ones(2); }
+
+ private:
+  Eigen::Vector2d q_ = Eigen::Vector2d::Zero();
+  Eigen::SparseMatrix<double> H_;
+};
+
 }  // namespace
+
+TEST_CASE("The escape from a saddle follows the curved valley to second order") {
+  CurvedValley valley;
+  CholeskySolver solver;
+  const EscapeResult left =
+      escape_saddle(valley, valley.hessian(), valley.mass(), solver, SaddleEscapeOptions{});
+  REQUIRE(left.outcome == EscapeOutcome::Escaped);
+  CHECK(left.saddle.lowest_eigenvalue == doctest::Approx(-4.0).epsilon(1e-9));
+  const double x = valley.get()[0], y = valley.get()[1];
+  // Along the straight line no energy below 1 - 1 / (K + 1) (|x| = 0.1):
+  // the bend (y ~ x^2, its coefficient 2K / (2K + 8)) reaches the wells.
+  CHECK(valley.energy() < 0.5);
+  CHECK(std::abs(x) > 0.9);
+  CHECK(y == doctest::Approx(x * x * 2.0 * CurvedValley::K / (2.0 * CurvedValley::K + 8.0)));
+  const NewtonResult r = solve_newton(valley, NewtonOptions{});
+  REQUIRE(r.converged());
+  CHECK(r.stable);
+  CHECK(std::abs(valley.get()[0]) == doctest::Approx(1.0).epsilon(1e-6));
+  CHECK(valley.get()[1] == doctest::Approx(1.0).epsilon(1e-6));
+}
 
 TEST_CASE("Newton leaves a saddle on the side of the bias, and never a mechanism's zero mode") {
   int checked = 0;
