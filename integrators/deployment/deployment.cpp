@@ -242,19 +242,13 @@ class Deployer {
   // ConstrainedNewtonSolver::second_derivative. Empty when a point of the
   // difference is rejected or a value is not finite. Leaves the problem at q.
   Eigen::VectorXd path_second_derivative(const Eigen::VectorXd& q, const Eigen::VectorXd& t) {
-    Eigen::VectorXd third;
-    try {
-      third = gradient_second_difference(
-          [&](const Eigen::VectorXd& x) {
-            problem_.set_free_dofs(x);
-            return problem_.free_gradient();
-          },
-          q, t, kCurvatureStep);
-    } catch (const std::domain_error&) {
-      problem_.set_free_dofs(q);
-      return {};
-    }
-    if (!third.allFinite()) return {};
+    const Eigen::VectorXd third = gradient_second_difference_or_empty(
+        [&](const Eigen::VectorXd& x) {
+          problem_.set_free_dofs(x);
+          return problem_.free_gradient();
+        },
+        q, t, kCurvatureStep);
+    if (third.size() == 0) return {};
     const Eigen::VectorXd k = constrained_newton_->second_derivative(third);
     return k.allFinite() ? k : Eigen::VectorXd();
   }

@@ -1,6 +1,7 @@
 #include "integrators/deployment/path_predictor.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace xshell {
 
@@ -75,6 +76,19 @@ Eigen::VectorXd gradient_second_difference(
   const Eigen::VectorXd plus = gradient(q + eps * t);
   const Eigen::VectorXd minus = gradient(q - eps * t);
   return (plus - 2.0 * gradient(q) + minus) / (eps * eps);
+}
+
+Eigen::VectorXd gradient_second_difference_or_empty(
+    const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& gradient,
+    const Eigen::VectorXd& q, const Eigen::VectorXd& t, double eps) {
+  Eigen::VectorXd third;
+  try {
+    third = gradient_second_difference(gradient, q, t, eps);
+  } catch (const std::domain_error&) {
+    gradient(q);
+    return {};
+  }
+  return third.allFinite() ? third : Eigen::VectorXd();
 }
 
 }  // namespace xshell

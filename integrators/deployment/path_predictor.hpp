@@ -74,4 +74,11 @@ Eigen::VectorXd gradient_second_difference(
     const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& gradient,
     const Eigen::VectorXd& q, const Eigen::VectorXd& t, double eps);
 
+// The same, empty instead when `gradient` rejects a point of the
+// difference (std::domain_error: then evaluated at q once more, so that
+// the caller's state is left at q) or a value is not finite.
+Eigen::VectorXd gradient_second_difference_or_empty(
+    const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& gradient,
+    const Eigen::VectorXd& q, const Eigen::VectorXd& t, double eps);
+
 }  // namespace xshell

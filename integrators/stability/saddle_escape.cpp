@@ -100,20 +100,12 @@ double step_downhill(Objective& objective, const Eigen::VectorXd& direction,
 }
 
 Eigen::VectorXd third_derivative_along(Objective& objective, const Eigen::VectorXd& d) {
-  const Eigen::VectorXd q0 = objective.get();
-  Eigen::VectorXd third;
-  try {
-    third = gradient_second_difference(
-        [&](const Eigen::VectorXd& x) {
-          objective.set(x);
-          return objective.gradient();
-        },
-        q0, d, kBendStep);
-  } catch (const std::domain_error&) {
-    objective.set(q0);
-    return {};
-  }
-  return third.allFinite() ? third : Eigen::VectorXd();
+  return gradient_second_difference_or_empty(
+      [&](const Eigen::VectorXd& x) {
+        objective.set(x);
+        return objective.gradient();
+      },
+      objective.get(), d, kBendStep);
 }
 
 Eigen::VectorXd bend_of_mode(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,

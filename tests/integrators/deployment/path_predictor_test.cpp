@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 namespace xshell::test {
@@ -234,6 +235,30 @@ TEST_CASE("The gradient's second difference along t converges as eps^2 to D3E[t,
   }
   CHECK(halvings == 4);
   CHECK(error(1e-3) < 1e-5 * exact.norm());
+}
+
+TEST_CASE("The checked second difference is empty where a point is rejected or not finite") {
+  // g = (x_0^3, x_0 x_1): D3E[t, t] = (6 x_0 t_0^2, 2 t_0 t_1), exact in the difference.
+  Eigen::VectorXd last;  // the point of the last evaluation
+  double rejected_above = INFINITY, nan_above = INFINITY;
+  const auto gradient = [&](const Eigen::VectorXd& x) {
+    last = x;
+    if (x[0] > rejected_above) throw std::domain_error("rejected");
+    const double g1 = x[0] > nan_above ? NAN : x[0] * x[1];
+    return Eigen::Vector2d(x[0] * x[0] * x[0], g1);
+  };
+  const Eigen::Vector2d x(0.5, 2.0), t(1.0, 3.0);
+  const Eigen::VectorXd third = gradient_second_difference_or_empty(gradient, x, t, 1e-3);
+  REQUIRE(third.size() == 2);
+  CHECK(third[0] == doctest::Approx(6.0 * 0.5).epsilon(1e-6));
+  CHECK(third[1] == doctest::Approx(6.0).epsilon(1e-6));
+  CHECK(last == x);
+  rejected_above = 0.5001;  // x + eps t is rejected
+  CHECK(gradient_second_difference_or_empty(gradient, x, t, 1e-3).size() == 0);
+  CHECK(last == x);  // evaluated at x once more
+  rejected_above = INFINITY;
+  nan_above = 0.5001;
+  CHECK(gradient_second_difference_or_empty(gradient, x, t, 1e-3).size() == 0);
 }
 
 TEST_CASE("The curvature step leaves the parameter and the unknowns not compared unchanged") {
