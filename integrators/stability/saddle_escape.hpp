@@ -91,12 +91,13 @@ struct NegativeMode {
 };
 NegativeMode negative_mode(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& mass,
                            CholeskySolver& solver, const SaddleEscapeOptions& options);
-// The step q0 + t d (the trials above) from the objective's state q0;
-// returns t (0: no trial lowered the energy, the objective back at q0).
+// The step q0 + t d + t^2 bend (the trials above; an empty bend: the
+// straight line) from the objective's state q0; returns t (0: no trial
+// lowered the energy, the objective back at q0).
 double step_downhill(Objective& objective, const Eigen::VectorXd& direction,
                      const SaddleEscapeOptions& options, const Eigen::VectorXd& bend = {});
 
-// The bend: D3E[d, d] at the objective's state, by the gradient's central
+// For the bend: D3E[d, d] at the objective's state, by the gradient's central
 // second difference (step 1e-3; d scaled to a largest entry of 1), the
 // objective left there; empty when a point of the difference is invalid
 // or a value not finite.
