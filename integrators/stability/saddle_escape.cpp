@@ -23,13 +23,18 @@ constexpr int kMaxHalvings = 30;
 // 1e-16 |g| / 1e-6.
 constexpr double kBendStep = 1e-3;
 
-// The energy at q0 + t d + t^2 w (w empty: none), or +inf where the
-// configuration is invalid.
+// The escape's path: q0 + t d + t^2 w (w empty: the straight line).
+Eigen::VectorXd path_point(const Eigen::VectorXd& q0, const Eigen::VectorXd& d,
+                           const Eigen::VectorXd& w, double t) {
+  return w.size() == 0 ? Eigen::VectorXd(q0 + t * d) : Eigen::VectorXd(q0 + t * d + t * t * w);
+}
+
+// The energy at path_point(q0, d, w, t), or +inf where the configuration
+// is invalid.
 double energy_along(Objective& objective, const Eigen::VectorXd& q0, const Eigen::VectorXd& d,
                     const Eigen::VectorXd& w, double t) {
   try {
-    const double e = objective.set_and_energy(
-        w.size() == 0 ? Eigen::VectorXd(q0 + t * d) : Eigen::VectorXd(q0 + t * d + t * t * w));
+    const double e = objective.set_and_energy(path_point(q0, d, w, t));
     return std::isfinite(e) ? e : INFINITY;
   } catch (const std::domain_error&) {
     return INFINITY;
@@ -94,8 +99,7 @@ double step_downhill(Objective& objective, const Eigen::VectorXd& direction,
   const double e0 = objective.energy();
   const double t =
       best_amplitude(objective, q0, direction, bend, e0 - options.energy_noise * std::abs(e0));
-  objective.set(bend.size() == 0 ? Eigen::VectorXd(q0 + t * direction)
-                                 : Eigen::VectorXd(q0 + t * direction + t * t * bend));
+  objective.set(path_point(q0, direction, bend, t));
   return t;
 }
 
@@ -112,10 +116,8 @@ Eigen::VectorXd bend_of_mode(const Eigen::SparseMatrix<double>& H, const Eigen::
                              double eigenvalue, const Eigen::VectorXd& mode,
                              const Eigen::VectorXd& third, CholeskySolver& solver) {
   if (third.size() != H.rows() || !(eigenvalue < 0.0)) return {};
-  Eigen::SparseMatrix<double> shifted = H;
-  for (Eigen::Index i = 0; i < shifted.rows(); ++i)
-    shifted.coeffRef(i, i) -= 2.0 * eigenvalue * mass[i];
-  if (solver.factorize(shifted) != FactorizationStatus::PositiveDefinite) return {};
+  const Eigen::VectorXd shift = -2.0 * eigenvalue * mass;
+  if (solver.factorize(H, &shift) != FactorizationStatus::PositiveDefinite) return {};
   Eigen::VectorXd w = -0.5 * solver.solve(third);
   w -= (mode.dot(mass.cwiseProduct(w)) / mode.dot(mass.cwiseProduct(mode))) * mode;
   return w.allFinite() ? w : Eigen::VectorXd();
