@@ -37,6 +37,14 @@ constexpr double kTorqueStep = 1e-5;
 // O(1e-6) relative, the round-off eps |g| / 1e-6, about 1e-10 |g|.
 constexpr double kCurvatureStep = 1e-3;
 
+// The constrained Newton of a deployment's steps: its step cap grows
+// (NewtonOptions::grow_step_cap), for the snap-throughs whose descent takes
+// tens of capped steps in a row (docs/model.md 9.3).
+NewtonOptions step_newton(NewtonOptions options) {
+  options.grow_step_cap = true;
+  return options;
+}
+
 // The outcome of one solve, whichever solver ran it.
 struct Attempt {
   SolveResult solve;
@@ -84,8 +92,8 @@ class Deployer {
     // The constrained Newton solver also computes the tangent predictor.
     if (constraint_ && (options.solver == DeploymentSolver::Newton ||
                         options.predictor != DeploymentPredictor::UniformShift))
-      constrained_newton_ =
-          std::make_unique<ConstrainedNewtonSolver>(objective_, *constraint_, options_.newton);
+      constrained_newton_ = std::make_unique<ConstrainedNewtonSolver>(objective_, *constraint_,
+                                                                      step_newton(options_.newton));
     if (!constraint_ && options.solver == DeploymentSolver::Newton)
       newton_ = std::make_unique<NewtonSolver>(objective_, options_.newton);
     const std::vector<bool> frame_free = frame_free_unknowns(linkage);

@@ -107,7 +107,9 @@ struct DeploymentPlan {
 struct DeploymentOptions {
   DeploymentSolver solver = DeploymentSolver::Newton;
   DeploymentPredictor predictor = DeploymentPredictor::Quadratic;  // average actuation only
-  NewtonOptions newton;      // line_search is ignored under the average constraint
+  // line_search is ignored under the average constraint, and there the
+  // step cap grows (grow_step_cap set: docs/model.md 9.3).
+  NewtonOptions newton;
   DynamicsOptions dynamics;  // per step, from its start (DynamicsOptions::start)
   int max_halvings = 6;      // consecutive halvings of a failing increment
   // Newton iterations the first attempt at a step may take (saddle escapes
