@@ -84,8 +84,9 @@ struct NewtonOptions {
   // a deployed linkage springing back from its removed loads (scary_face
   // under steel-density gravity, 185 -> 155 iterations, tens of full steps
   // at the cap), a relaxation (the app's: the largest design's descent
-  // from its flat saddle, 63 -> 55 iterations), a deployment's steps
-  // (deployment.hpp: across a snap-through, tens of capped steps in a row).
+  // from its flat saddle, 63 -> 55 iterations), a deployment's steps under
+  // the average constraint (deployment.hpp: across a snap-through, tens of
+  // capped steps in a row; prescribed joint angles keep the fixed cap).
   bool grow_step_cap = false;
   // Scaled step tolerance (KINSetScaledStepTol, and the same test after an
   // energy line search step): a step with max_i |dq_i| / (1 + |q_i|) below
