@@ -7,6 +7,9 @@
 
 #include "command_line.hpp"
 #include "exit_status.hpp"
+#ifdef XSHELL_FORWARD_TO_FULL
+#include "full_program.hpp"
+#endif
 
 namespace {
 std::atomic<bool> g_stop{false};
@@ -36,6 +39,11 @@ int main(int argc, char** argv) {
         return run_relax(line.relax, g_stop);
       case Command::Fabricate:
         return run_fabricate(line.fabricate);
+#ifdef XSHELL_FORWARD_TO_FULL
+      case Command::Render:
+      case Command::Design:
+        return run_in_full_program(argv);
+#else
       case Command::Render:
         return run_render(line.render);
       case Command::Design:
@@ -44,6 +52,7 @@ int main(int argc, char** argv) {
         std::signal(SIGTERM, on_signal);
         std::signal(SIGPIPE, SIG_IGN);
         return run_design_command(line.design, g_stop);
+#endif
     }
   } catch (const std::bad_alloc&) {
     std::cerr

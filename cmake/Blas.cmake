@@ -25,8 +25,9 @@ if(XSHELL_BLAS STREQUAL "openblas")
     get_filename_component(_openblas_dir "${XSHELL_OPENBLAS_BLAS}" DIRECTORY)
     # --no-as-needed: nothing in xshell calls BLAS itself, and the point is
     # the dependency. The run path is the build tree's and the installed one.
-    target_link_options(xshell_blas INTERFACE "LINKER:--no-as-needed" "LINKER:-rpath,${_openblas_dir}")
-    target_link_libraries(xshell_blas INTERFACE "${XSHELL_OPENBLAS_BLAS}" "${XSHELL_OPENBLAS_LAPACK}")
+    target_link_options(xshell_blas INTERFACE "LINKER:-rpath,${_openblas_dir}")
+    target_link_libraries(xshell_blas INTERFACE "-Wl,--push-state,--no-as-needed"
+      "${XSHELL_OPENBLAS_BLAS}" "${XSHELL_OPENBLAS_LAPACK}" "-Wl,--pop-state")
     message(STATUS "xshell: CHOLMOD uses OpenBLAS (${_openblas_dir})")
   else()
     message(WARNING "xshell: XSHELL_BLAS=openblas but OpenBLAS (libopenblas0-openmp) is not installed: "
