@@ -23,8 +23,10 @@ if(XSHELL_BLAS STREQUAL "openblas")
   find_library(XSHELL_OPENBLAS_LAPACK NAMES liblapack.so.3 PATHS ${_openblas_dirs} NO_DEFAULT_PATH)
   if(XSHELL_OPENBLAS_BLAS AND XSHELL_OPENBLAS_LAPACK)
     get_filename_component(_openblas_dir "${XSHELL_OPENBLAS_BLAS}" DIRECTORY)
-    # --no-as-needed: nothing in xshell calls BLAS itself, and the point is
-    # the dependency. The run path is the build tree's and the installed one.
+    # --no-as-needed for these two alone (--push-state): nothing in xshell
+    # calls BLAS itself, and the point is the dependency; every other library
+    # keeps the linker's setting (xshell links --as-needed, app/CMakeLists.txt).
+    # The run path is the build tree's and the installed one.
     target_link_options(xshell_blas INTERFACE "LINKER:-rpath,${_openblas_dir}")
     target_link_libraries(xshell_blas INTERFACE "-Wl,--push-state,--no-as-needed"
       "${XSHELL_OPENBLAS_BLAS}" "${XSHELL_OPENBLAS_LAPACK}" "-Wl,--pop-state")
