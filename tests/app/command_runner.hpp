@@ -37,16 +37,22 @@ inline void write_text(const fs::path& path, const std::string& text) {
   std::ofstream(path) << text;
 }
 
-// Runs `xshell ARGS` (arguments already quoted as needed) in `dir`.
-inline CommandResult run_xshell(const std::string& args, const fs::path& dir) {
+// Runs `PROGRAM ARGS` (arguments already quoted as needed) in `dir`.
+inline CommandResult run_program(const fs::path& program, const std::string& args,
+                                 const fs::path& dir) {
   const fs::path err = dir / "stderr.txt";
-  const std::string command = "cd '" + dir.string() + "' && '" + std::string(XSHELL_BINARY) + "' " +
-                              args + " > /dev/null 2> '" + err.string() + "'";
+  const std::string command = "cd '" + dir.string() + "' && '" + program.string() + "' " + args +
+                              " > /dev/null 2> '" + err.string() + "'";
   const int raw = std::system(command.c_str());
   CommandResult r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   r.errors = read_text(err);
   return r;
+}
+
+// Runs `xshell ARGS` (arguments already quoted as needed) in `dir`.
+inline CommandResult run_xshell(const std::string& args, const fs::path& dir) {
+  return run_program(XSHELL_BINARY, args, dir);
 }
 
 // A configuration of the bundled grid sample under gravity, writing to `out`.

@@ -48,15 +48,8 @@ TEST_CASE("xshell hands render and design to xshell-full beside it, and says so 
   const fs::path alone = dir / "alone";
   fs::create_directory(alone);
   fs::copy_file(XSHELL_BINARY, alone / "xshell");
-  const std::string program = "'" + (alone / "xshell").string() + "' ";
   auto run = [&](const std::string& args) {
-    const std::string command =
-        program + args + " > /dev/null 2> '" + (dir / "stderr.txt").string() + "'";
-    const int raw = std::system(command.c_str());
-    CommandResult r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.errors = read_text(dir / "stderr.txt");
-    return r;
+    return run_program(alone / "xshell", args, dir.path());
   };
   for (const char* command : {"render missing.vtp --out p.png", "design missing.json"}) {
     const CommandResult r = run(command);
