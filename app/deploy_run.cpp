@@ -169,6 +169,7 @@ DeploymentSummary deployment_summary(const Deployment& d, const DeploymentResult
   ds.round_off_floor_steps = result.round_off_floor_steps;
   ds.iterations = result.iterations;
   ds.factorizations = result.factorizations;
+  ds.chord_corrections = result.chord_corrections;
   ds.start_average_angle = result.start_angle;
   if (d.target == DeploymentTarget::AverageOpeningAngle)
     ds.target_average_angle = d.average_opening_angle;

@@ -1,6 +1,7 @@
 #include "solver_runs.hpp"
 
 #include <cstdio>
+#include <string>
 
 #include "integrators/kinetic_damping/kinetic_damping.hpp"
 
@@ -30,12 +31,24 @@ DynamicsOptions dynamics_options(const SolverOptions& solver) {
   return o;
 }
 
+namespace {
+
+// ", 2 chord corrections" after the factorizations, when there were any.
+std::string chord_note(int corrections) {
+  if (corrections == 0) return "";
+  return ", " + std::to_string(corrections) +
+         (corrections == 1 ? " chord correction" : " chord corrections");
+}
+
+}  // namespace
+
 void print_progress(const NewtonReport& r, bool nested) {
   std::fprintf(
       stderr,
-      "%snewton %*d  energy %.10e  gradient %.3e  step %.3e  factorizations %ld%s  %.3f s\n",
+      "%snewton %*d  energy %.10e  gradient %.3e  step %.3e  factorizations %ld%s%s  %.3f s\n",
       nested ? "  " : "", nested ? 3 : 4, r.iteration, r.energy, r.gradient_measure, r.step_norm,
-      r.factorizations, r.shifted ? " (shifted)" : "", r.seconds);
+      r.factorizations, r.shifted ? " (shifted)" : "", chord_note(r.chord_corrections).c_str(),
+      r.seconds);
 }
 
 void print_progress(const DynamicsReport& r, bool nested) {

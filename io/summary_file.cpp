@@ -72,6 +72,7 @@ nlohmann::json summary_deployment_json(const DeploymentSummary& d) {
           {"round_off_floor_steps", d.round_off_floor_steps},
           {"iterations", d.iterations},
           {"factorizations", d.factorizations},
+          {"chord_corrections", d.chord_corrections},
           {"start_average_angle", d.start_average_angle},
           {"target_average_angle", optional_json(d.target_average_angle)},
           {"final_average_angle", d.final_average_angle},

@@ -51,7 +51,9 @@
 //                     gradient measure stagnated at its round-off floor within twice the
 //                     tolerance), iterations (solver iterations or time steps, all steps),
 //                     factorizations (the sparse factorizations of every attempt and of the
-//                     twin, where the solver counts them), start_average_angle,
+//                     twin, where the solver counts them), chord_corrections (Newton's
+//                     steps with an iteration's factorization, not counted in iterations),
+//                     start_average_angle,
 //                     target_average_angle (null for joint_angles), final_average_angle
 //                     (radians), final_torque (dE/dA, energy per radian), table
 //                     ("deployment.csv"), plot ("deployment.png" or null),
@@ -115,6 +117,7 @@ struct DeploymentSummary {
   int round_off_floor_steps = 0;
   long iterations = 0;
   long factorizations = 0;
+  long chord_corrections = 0;
   double start_average_angle = 0.0;
   std::optional<double> target_average_angle;
   double final_average_angle = 0.0;

@@ -74,6 +74,9 @@ struct SolveResult {
   double gradient_measure = 0.0;  // max_i |w_i g_i| at the final state (dimensionless)
   bool stable = false;            // an unshifted LL^T of the final (constrained) Hessian succeeded
   long factorizations = 0;  // numeric Cholesky factorizations, the final stability check included
+  // Newton's chord corrections (steps with an iteration's factorization,
+  // NewtonOptions::max_chord_corrections), not counted in iterations.
+  long chord_corrections = 0;
   double setup_seconds = 0.0;  // wall time before the first iteration (0 where not measured:
                                // dynamics, kinetic damping, deployment)
   double seconds = 0.0;        // wall time of the whole solve, setup included

@@ -9,6 +9,7 @@
 #include "integrators/common/wall_clock.hpp"
 #include "integrators/linear_algebra/cholesky_solver.hpp"
 #include "integrators/linear_algebra/shifted_factorization.hpp"
+#include "integrators/newton/chord_correction.hpp"
 #include "integrators/newton/descent_step.hpp"
 #include "integrators/newton/iteration_checks.hpp"
 
@@ -68,12 +69,14 @@ struct ConstrainedRun {
   double previous_measure = 0.0;
   double start_measure = 0.0;
   bool early_escape_tried = false;  // once per solve
+  bool full_step = false;           // the last line search took the step in full (not expanded)
 };
 
 // The Newton step p and its multiplier tau.
 struct ConstrainedStep {
   Eigen::VectorXd p;
   double tau = 0.0;
+  Eigen::VectorXd x2;  // H^-1 a, when the Schur complement made the step (else empty)
 };
 
 }  // namespace
@@ -136,6 +139,8 @@ struct ConstrainedNewtonSolver::Impl {
                    const ConstrainedStep& step);
   void record_step(ConstrainedRun& run, const Eigen::VectorXd& q0, double e0,
                    const Eigen::VectorXd& w);
+  void correct_by_chords(ConstrainedRun& run, const ConstrainedStep& step,
+                         const Eigen::VectorXd& q0, const Eigen::VectorXd& w);
   bool escape(ConstrainedRun& run);
   bool converging_to_saddle(const ConstrainedRun& run) const;
   bool leave_saddle(ConstrainedRun& run);
@@ -242,6 +247,9 @@ bool ConstrainedNewtonSolver::Impl::iterate(ConstrainedRun& run) {
   if (!direction(run, H, g0, c, step)) return false;
   if (!line_search(run, q0, e0, g0, c, w, step)) return false;
   record_step(run, q0, e0, w);
+  run.report.chord_corrections = 0;
+  if (options.max_chord_corrections > 0 && step.x2.size() && run.full_step && !run.capped)
+    correct_by_chords(run, step, q0, w);
   run.report.factorizations = factorizations() - factorizations_before;
   run.report.seconds = seconds_since(iteration_start);
   if (run.callbacks.on_iteration) run.callbacks.on_iteration(run.report);
@@ -272,6 +280,7 @@ bool ConstrainedNewtonSolver::Impl::direction(ConstrainedRun& run,
     const Eigen::VectorXd x1 = full.solve(g0), x2 = full.solve(a);
     step.tau = (c + a.dot(x1)) / a.dot(x2);
     step.p = step.tau * x2 - x1;
+    step.x2 = x2;
     ++result.schur_iterations;
   } else {
     const ShiftedFactorization f = factorize_reduced(H, run.mass);
@@ -351,6 +360,7 @@ bool ConstrainedNewtonSolver::Impl::line_search(ConstrainedRun& run, const Eigen
     objective.set(q0);
     throw;
   }
+  run.full_step = accepted.accepted && accepted.step_fraction == 1.0;
   if (accepted.accepted) {
     if (options.grow_step_cap)
       run.step_cap = grown_step_cap(run.step_cap, run.capped, options.max_step,
@@ -379,6 +389,38 @@ void ConstrainedNewtonSolver::Impl::record_step(ConstrainedRun& run, const Eigen
     run.stalled = 0;
   } else if (std::abs(report.energy - e0) <= 1e-13 * std::abs(e0)) {
     ++run.stalled;
+  }
+}
+
+// Chord corrections (chord_correction.hpp) after a full step of the Schur
+// complement, with its factorization of H: the bordered system's solution
+// from the gradient and constraint residual at each point.
+void ConstrainedNewtonSolver::Impl::correct_by_chords(ConstrainedRun& run,
+                                                      const ConstrainedStep& step,
+                                                      const Eigen::VectorXd& q0,
+                                                      const Eigen::VectorXd& w) {
+  const Eigen::VectorXd& a = constraint.coefficients();
+  ChordCorrection chord;
+  chord.step = [&](const Eigen::VectorXd& q, const Eigen::VectorXd& g) {
+    const Eigen::VectorXd x1 = full.solve(g);
+    const double tau = (run.target - constraint.value(q) + a.dot(x1)) / a.dot(step.x2);
+    return Eigen::VectorXd(tau * step.x2 - x1);
+  };
+  chord.measure = [&](const Eigen::VectorXd& g) { return measure(w, g); };
+  chord.tolerance = options.gradient_tolerance;
+  chord.max_corrections = options.max_chord_corrections;
+  NewtonReport& report = run.report;
+  const ChordOutcome out = xshell::correct_by_chords(evaluator, chord, run.previous_measure,
+                                                     report.energy, report.gradient_measure);
+  if (out.corrections == 0) return;
+  report.chord_corrections = out.corrections;
+  run.result.chord_corrections += out.corrections;
+  report.energy = out.energy;
+  report.gradient_measure = out.measure;
+  report.step_norm = (objective.get() - q0).lpNorm<Eigen::Infinity>();
+  if (out.measure < 0.5 * run.best_measure) {
+    run.best_measure = out.measure;
+    run.stalled = 0;
   }
 }
 
@@ -425,6 +467,7 @@ bool ConstrainedNewtonSolver::Impl::leave_saddle(ConstrainedRun& run) {
   report.gradient_measure = measure(objective.gradient_weights(), evaluator.gradient());
   report.step_norm = (objective.get() - q_saddle).lpNorm<Eigen::Infinity>();
   report.shifted = true;
+  report.chord_corrections = 0;
   report.factorizations = factorizations() - factorizations_at_escape;
   report.seconds = seconds_since(escape_start);
   if (run.callbacks.on_iteration) run.callbacks.on_iteration(report);

@@ -363,6 +363,7 @@ class Deployer {
     a.solve.factorizations += predictor_factorizations;
     result_.iterations += a.solve.iterations;
     result_.factorizations += a.solve.factorizations;
+    result_.chord_corrections += a.solve.chord_corrections;
     if (!a.solve.converged()) {
       problem_ = saved;
       last_reason_ = a.solve.reason;
@@ -536,6 +537,7 @@ void Deployer::prefer_user_branch(double s, int step, Attempt& a) {
   }
   result_.iterations += b.solve.iterations;
   result_.factorizations += b.solve.factorizations;
+  result_.chord_corrections += b.solve.chord_corrections;
   if (b.solve.converged() && b.solve.stable && mean_displacement(problem_, direction) > 0.0) {
     a = std::move(b);
     result_.branch_switch_step = step;
@@ -549,6 +551,7 @@ void Deployer::prefer_user_branch(double s, int step, Attempt& a) {
 void Deployer::end_twin() {
   result_.iterations += twin_->deployer.result_.iterations;
   result_.factorizations += twin_->deployer.result_.factorizations;
+  result_.chord_corrections += twin_->deployer.result_.chord_corrections;
   twin_.reset();
 }
 

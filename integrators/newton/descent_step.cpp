@@ -24,7 +24,7 @@ DescentStepResult energy_descent_step(ObjectiveEvaluator& evaluator, CholeskySol
   energy.slope = slope;
   energy.progress = [&] {
     const Eigen::VectorXd w = evaluator.objective().gradient_weights();
-    const Eigen::VectorXd g = evaluator.objective().gradient();
+    const Eigen::VectorXd& g = evaluator.gradient();  // kept for the chord corrections
     return g.allFinite() &&
            (w.array() * g.array()).matrix().norm() < (w.array() * g0.array()).matrix().norm();
   };

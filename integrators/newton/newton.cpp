@@ -11,6 +11,7 @@
 #include "integrators/common/objective_evaluator.hpp"
 #include "integrators/common/wall_clock.hpp"
 #include "integrators/linear_algebra/sundials_handles.hpp"
+#include "integrators/newton/chord_correction.hpp"
 #include "integrators/newton/descent_step.hpp"
 #include "integrators/newton/iteration_checks.hpp"
 #include "integrators/newton/kinsol_system.hpp"
@@ -90,7 +91,9 @@ struct NewtonSolver::Impl {
   bool finished(int iteration, NewtonRun& run);
   bool iterate(int iteration, NewtonRun& run);
   int kinsol_step(const Eigen::VectorXd& q0);
-  bool energy_step(const Eigen::VectorXd& q0, NewtonRun& run, double& energy);
+  bool energy_step(const Eigen::VectorXd& q0, const Eigen::VectorXd& weights, NewtonRun& run,
+                   double& energy);
+  void correct_by_chords(const Eigen::VectorXd& weights, NewtonRun& run, double& energy);
   bool accept_step(int iteration, const Eigen::VectorXd& q0, double energy, NewtonRun& run);
   void restore(const Eigen::VectorXd& q0);
   void rethrow_if_fatal(const Eigen::VectorXd& q0);
@@ -219,11 +222,12 @@ bool NewtonSolver::Impl::iterate(int iteration, NewtonRun& run) {
   as_eigen(f_scale.get()) = weights.cwiseAbs().cwiseMax(kMinimumScale);
   int flag = kinsol_step(q0);
   run.report.energy_line_search = false;
+  run.report.chord_corrections = 0;
   double accepted_energy = 0.0;  // known after an energy line search step
   if (flag == KIN_LSETUP_FAIL && system.deferred()) {
     // The (possibly shifted) factorization is ready: step on the energy.
     run.report.energy_line_search = true;
-    if (!energy_step(q0, run, accepted_energy)) return false;
+    if (!energy_step(q0, weights, run, accepted_energy)) return false;
     flag = KIN_SUCCESS;
   }
   const bool accepted =
@@ -263,9 +267,11 @@ int NewtonSolver::Impl::kinsol_step(const Eigen::VectorXd& q0) {
 }
 
 // The step with the factorization that KINSOL's setup left: the energy line
-// search (descent_step.hpp). On success u holds the new point and `energy`
-// its energy; otherwise the result is set and the objective back at q0.
-bool NewtonSolver::Impl::energy_step(const Eigen::VectorXd& q0, NewtonRun& run, double& energy) {
+// search (descent_step.hpp), after a full unshifted step its chord
+// corrections. On success u holds the new point and `energy` its energy;
+// otherwise the result is set and the objective back at q0.
+bool NewtonSolver::Impl::energy_step(const Eigen::VectorXd& q0, const Eigen::VectorXd& weights,
+                                     NewtonRun& run, double& energy) {
   evaluator.move_to(q0);
   const Eigen::VectorXd g0 = evaluator.gradient();
   DescentStepOptions descent;
@@ -281,14 +287,37 @@ bool NewtonSolver::Impl::energy_step(const Eigen::VectorXd& q0, NewtonRun& run, 
     fail_line_search(step, evaluator, "Newton step", run.result);
     return false;
   }
-  as_eigen(u.get()) = evaluator.position();
   energy = step.energy;
   if (options.grow_step_cap) {
     const double taken = (evaluator.position() - q0).norm();
     run.step_cap =
         grown_step_cap(run.step_cap, step.capped, options.max_step, taken, step.step_fraction);
   }
+  if (options.max_chord_corrections > 0 && descent.newton_step && step.step_fraction == 1.0 &&
+      !step.capped)
+    correct_by_chords(weights, run, energy);
+  as_eigen(u.get()) = evaluator.position();
   return true;
+}
+
+// Chord corrections (chord_correction.hpp) from the evaluator's position
+// with the iteration's factorization, in the unknowns the step was taken
+// in (before the rebase). Updates `energy` and the report's count.
+void NewtonSolver::Impl::correct_by_chords(const Eigen::VectorXd& weights, NewtonRun& run,
+                                           double& energy) {
+  ChordCorrection chord;
+  chord.step = [&](const Eigen::VectorXd&, const Eigen::VectorXd& g) {
+    return Eigen::VectorXd(-system.cholesky().solve(g));
+  };
+  chord.measure = [&](const Eigen::VectorXd& g) { return weighted_max_norm(weights, g); };
+  chord.tolerance = options.gradient_tolerance;
+  chord.max_corrections = options.max_chord_corrections;
+  const double m1 = weighted_max_norm(weights, evaluator.gradient());
+  const ChordOutcome out =
+      xshell::correct_by_chords(evaluator, chord, run.report.gradient_measure, energy, m1);
+  energy = out.energy;
+  run.report.chord_corrections = out.corrections;
+  run.result.chord_corrections += out.corrections;
 }
 
 // Moves to KINSOL's (or the line search's) new point in u and reports its
@@ -374,6 +403,7 @@ bool NewtonSolver::Impl::escape(int& iteration, NewtonRun& run) {
   report.hessian_seconds = report.factorization_seconds = 0.0;
   report.shifted = true;
   report.energy_line_search = true;
+  report.chord_corrections = 0;
   report.seconds = seconds_since(escape_start);
   if (run.callbacks.on_iteration) run.callbacks.on_iteration(report);
   run.stagnant = false;

@@ -80,6 +80,37 @@ TEST_CASE(
 }
 
 TEST_CASE(
+    "Chord corrections: the same deployment with fewer Newton iterations and factorizations") {
+  // The dome opened by 0.4 rad in 8 steps, at the default tolerance, with
+  // and without chord corrections (constrained Newton, Schur complement).
+  DeploymentOptions options = tight(DeploymentSolver::Newton, 1e-6);
+  options.newton.max_chord_corrections = 0;
+  LinkageProblem newton = dome_problem(3);
+  const double start = average_opening_angle(newton.linkage());
+  const DeploymentResult without = run(newton, average_plan(start + 0.4, 8), options);
+  CHECK(without.chord_corrections == 0);
+  options.newton.max_chord_corrections = 3;
+  LinkageProblem chord = dome_problem(3);
+  const DeploymentResult with = run(chord, average_plan(start + 0.4, 8), options);
+  MESSAGE("dome: " << without.iterations << " iterations, " << without.factorizations
+                   << " factorizations; with chords " << with.iterations << ", "
+                   << with.factorizations << " and " << with.chord_corrections << " corrections");
+  CHECK(with.chord_corrections >= 1);
+  CHECK(with.iterations < without.iterations);
+  CHECK(with.factorizations < without.factorizations);
+  REQUIRE(with.steps.size() == without.steps.size());
+  for (size_t i = 0; i < with.steps.size(); ++i) {
+    CAPTURE(i);
+    CHECK(with.steps[i].gradient_measure <= 1e-6);
+    CHECK(with.steps[i].average_angle == doctest::Approx(without.steps[i].average_angle));
+    CHECK(with.steps[i].torque == doctest::Approx(without.steps[i].torque).epsilon(1e-6));
+  }
+  // Both at the dome's equilibrium to the tolerance's accuracy.
+  CHECK((stacked_vertices(chord) - stacked_vertices(newton)).lpNorm<Eigen::Infinity>() <
+        1e-6 * chord.length_scale());
+}
+
+TEST_CASE(
     "The torque is the derivative of the equilibrium energy along the path (central differences)") {
   int compared = 0;
   for (DeploymentSolver solver : {DeploymentSolver::Newton, DeploymentSolver::Dynamics}) {
@@ -238,8 +269,10 @@ TEST_CASE("A failing step is halved and retried, the deployment reports a step i
   LinkageProblem problem = dome_problem(3);
   const double start = average_opening_angle(problem.linkage());
   DeploymentOptions options = tight(DeploymentSolver::Newton);
-  options.newton.max_iterations =
-      4;  // too few for a whole step of 0.4 rad (5), enough for smaller ones
+  // Too few for a whole step of 0.4 rad (5 Newton iterations without chord
+  // corrections), enough for smaller ones.
+  options.newton.max_iterations = 4;
+  options.newton.max_chord_corrections = 0;
   const DeploymentResult r = deploy(problem, average_plan(start + 0.4, 1), options);
   CAPTURE(r.reason);
   REQUIRE(r.converged());
