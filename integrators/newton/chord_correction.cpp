@@ -9,10 +9,10 @@ namespace {
 
 // A correction is tried while m^2 / m_before (the next measure, were the
 // contraction to stay as it was) is at most this multiple of the
-// tolerance. The deployments' benchmark with at most 3 corrections:
-// 100 and 1e4 gave the same iterations within 2 (manta_ray 59 and 57,
-// hourglass 35 and 35); 1e6, nearly always trying, only 2-4 fewer but
-// with failed corrections in the non-quadratic phases.
+// tolerance. The deployments' benchmark (--reps 1) with at most 3
+// corrections: 100 and 1e4 gave the same iterations within 2 (manta_ray
+// 59 and 57, hourglass 35 and 35); at most 8 with 1e6, 2-4 fewer
+// (hourglass 31), without a clear gain in seconds.
 constexpr double kChordMargin = 100.0;
 
 // Energy changes below this multiple of |E| are round-off at a converging
