@@ -82,6 +82,26 @@ int count(const std::string& text, const std::string& what) {
 
 }  // namespace
 
+TEST_CASE("relax with a deployment: Newton's chord corrections in the summary and per iteration") {
+  // The dome opened in 8 steps, some of which end with chord corrections:
+  // the summary's count is the sum of those on the --verbose lines.
+  const ScratchDirectory scratch("deploy-chords");
+  write_text(scratch.path() / "dome.obj", dome_obj());
+  write_text(scratch.path() / "run.json",
+             deploy_config(R"({"average_opening_angle": 1.9, "steps": 8})", "newton"));
+  const CommandResult r = run_xshell("relax run.json --verbose", scratch.path());
+  CAPTURE(r.errors);
+  REQUIRE(r.status == 0);
+  const nlohmann::json s = read_json(scratch.path() / "out" / "summary.json");
+  const long corrections = s["deployment"]["chord_corrections"].get<long>();
+  long on_lines = 0;  // ", N chord correction(s)" after an iteration's factorizations
+  for (size_t at = r.errors.find(" chord correction"); at != std::string::npos;
+       at = r.errors.find(" chord correction", at + 1))
+    on_lines += std::stol(r.errors.substr(r.errors.rfind(", ", at) + 2));
+  CHECK(corrections >= 1);
+  CHECK(on_lines == corrections);
+}
+
 TEST_CASE(
     "relax with a deployment: steps, deployment.csv, the VTK series, the plot and the summary") {
   int solvers = 0;
@@ -144,6 +164,8 @@ TEST_CASE(
     CHECK(d["factorizations"].get<long>() == table_factorizations);
     CHECK(d["curvature_dropped"] == 0);
     CHECK(d["round_off_floor_steps"] == 0);  // the sample converges below the tolerance
+    // Newton's chord corrections: their own test case below.
+    if (std::string(solver) == "dynamics") CHECK(d["chord_corrections"] == 0);
     // One VTK snapshot per step: 5 times, 3 parts each (rods, frames, joints).
     const std::string pvd = read_text(dir / "out" / "series.pvd");
     CHECK(count(pvd, "timestep=") == 15);
