@@ -21,6 +21,8 @@
 //   p = B pz + c a / (a . a) with pz = -(B^T H B)^-1 B^T g on the
 //   constraint's null space, B^T H B shifted by multiples of diag(B^T M B)
 //   as in shifted_factorization.hpp only when it is itself indefinite.
+//   After a full step of the Schur complement, chord corrections with the
+//   same factorization (chord_correction.hpp, NewtonOptions::max_chord_corrections).
 //   Step cap: |p| <= NewtonOptions::max_step; with grow_step_cap, the cap
 //   doubles after every capped step that the line search took in full and
 //   returns to the longer of max_step and the accepted step's length after

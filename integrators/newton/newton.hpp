@@ -16,6 +16,9 @@
 //      energy (descent_step.hpp), along the objective's curve when it has
 //      one (the linkage turns its edges: docs/model.md section 9.8); with LineSearch::Kinsol*
 //      KINSOL takes it with its own line search (KIN_LINESEARCH, on 1/2 |diag(w) F|^2).
+//   4. after a full energy line search step of an unshifted Hessian, up to
+//      NewtonOptions::max_chord_corrections steps with the same
+//      factorization (chord_correction.hpp), before the rebase.
 // KINSOL's function scaling is the objective's gradient weights w, so that
 // its own stopping test max_i |w_i F_i| <= tolerance is ours; the driver
 // checks the gradient measure before every iteration (a converged start
