@@ -19,8 +19,8 @@ namespace {
 // with a stiffness kc instead of k: each correction multiplies the gradient
 // by 1 - k / kc.
 struct ScalarChord {
-  double k = 4.0, f = 2.0;
-  test::Quadratic parabola{Eigen::MatrixXd::Constant(1, 1, 4.0), Eigen::VectorXd::Constant(1, 2.0)};
+  const double k = 4.0, f = 2.0;
+  test::Quadratic parabola{Eigen::MatrixXd::Constant(1, 1, k), Eigen::VectorXd::Constant(1, f)};
   ObjectiveEvaluator evaluator{parabola};
   ChordCorrection chord(double kc, double tolerance, int max_corrections) const {
     ChordCorrection c;
