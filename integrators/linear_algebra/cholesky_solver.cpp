@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "integrators/linear_algebra/cholesky_pattern.hpp"
 #include "integrators/linear_algebra/cholmod_handles.hpp"
 #include "integrators/linear_algebra/cholmod_threads.hpp"
 
@@ -20,23 +21,12 @@ namespace xshell {
 // with the natural ordering (the permutation is then ours): CHOLMOD uses it
 // in place. Solves apply P to the right-hand side and P^T to the solution.
 struct CholeskySolver::Impl {
-  // What analyze() derives from an input's pattern; never changed after.
-  struct Pattern {
-    std::vector<int> source_outer, source_inner;  // the analyzed input's pattern
-    // tril(P A P^T) plus the full diagonal, in CHOLMOD's (stype = -1)
-    // layout: its structure (the values live in each solver's `values`).
-    Eigen::SparseMatrix<double> lower;
-    std::vector<int> permutation;  // P: row k of P A P^T is row permutation[k] of A
-    std::vector<int> scatter;      // input value k -> index in lower, or -1 (lower triangle of A)
-    std::vector<int> diagonal;     // unknown j -> index of its diagonal entry in lower
-  };
-
   std::unique_ptr<CholmodCommon> common = std::make_unique<CholmodCommon>();
   CholmodFactor factor;
   CholmodDense x{*common}, y{*common}, e{*common};  // cholmod_solve2 workspaces
 
-  std::unique_ptr<const Pattern> pattern;  // of the last analyzed input
-  Eigen::VectorXd values;                  // of tril(P A P^T), in pattern->lower's layout
+  std::shared_ptr<const CholeskyPattern> pattern;  // of the last analyzed input
+  Eigen::VectorXd values;                          // of tril(P A P^T), in pattern->lower's layout
   // The values of the last factorization, and its status when it ran to
   // the end (none after an analysis): the next values are
   // filled into `values`, and the two swap after a factorization.
@@ -68,38 +58,6 @@ struct CholeskySolver::Impl {
 
 namespace {
 
-// Upper triangle of A's pattern plus the full diagonal.
-Eigen::SparseMatrix<double> upper_pattern(const Eigen::SparseMatrix<double>& A) {
-  const int n = static_cast<int>(A.cols());
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<size_t>(A.nonZeros()) / 2 + static_cast<size_t>(n));
-  for (int j = 0; j < n; ++j) {
-    entries.emplace_back(j, j, 0.0);
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it)
-      if (it.row() < j) entries.emplace_back(static_cast<int>(it.row()), j, 0.0);
-  }
-  Eigen::SparseMatrix<double> upper(n, n);
-  upper.setFromTriplets(entries.begin(), entries.end());
-  upper.makeCompressed();
-  return upper;
-}
-
-// CHOLMOD's fill-reducing permutation (with its postordering) for the
-// symmetric matrix whose upper triangle is `upper`.
-std::vector<int> fill_reducing_permutation(Eigen::SparseMatrix<double>& upper, cholmod_common* c) {
-  cholmod_sparse view = sparse_view(upper, SymmetricStorage::Upper);
-  cholmod_factor* L = nullptr;
-  {
-    const CholmodThreads threads;
-    L = cholmod_analyze(&view, c);
-  }
-  if (L == nullptr) throw std::runtime_error("cholmod_analyze failed");
-  const int* perm = static_cast<const int*>(L->Perm);
-  std::vector<int> permutation(perm, perm + L->n);
-  cholmod_free_factor(&L, c);
-  return permutation;
-}
-
 // A factor of the already permuted matrix whose lower triangle is `lower`:
 // natural ordering, no further postordering.
 cholmod_factor* analyze_in_order(const Eigen::SparseMatrix<double>& lower, double* values,
@@ -130,70 +88,23 @@ cholmod_factor* analyze_in_order(const Eigen::SparseMatrix<double>& lower, doubl
 }  // namespace
 
 bool CholeskySolver::Impl::analyzed_for(const Eigen::SparseMatrix<double>& A) const {
-  if (!factor || !pattern) return false;
-  const std::vector<int>& outer = pattern->source_outer;
-  const std::vector<int>& inner = pattern->source_inner;
-  if (static_cast<size_t>(A.cols()) + 1 != outer.size()) return false;
-  if (static_cast<size_t>(A.nonZeros()) != inner.size()) return false;
-  return std::equal(outer.begin(), outer.end(), A.outerIndexPtr()) &&
-         std::equal(inner.begin(), inner.end(), A.innerIndexPtr());
+  return factor && pattern && has_pattern(*pattern, A);
 }
 
 void CholeskySolver::Impl::analyze(const Eigen::SparseMatrix<double>& A) {
-  const int n = static_cast<int>(A.cols());
   factor.reset();
   pattern.reset();
   ready = false;
-  auto p = std::make_unique<Pattern>();
-  Eigen::SparseMatrix<double> upper = upper_pattern(A);
-  p->permutation = fill_reducing_permutation(upper, common->get());
-  std::vector<int> inverse(static_cast<size_t>(n));
-  for (int k = 0; k < n; ++k)
-    inverse[static_cast<size_t>(p->permutation[static_cast<size_t>(k)])] = k;
-
-  // Entry (r, c) of A's upper triangle is entry (inverse[r], inverse[c]) of
-  // P A P^T; its lower triangle keeps the larger index as the row.
-  auto permuted_entry = [&](int row, int col) {
-    const int a = inverse[static_cast<size_t>(row)], b = inverse[static_cast<size_t>(col)];
-    return std::make_pair(std::max(a, b), std::min(a, b));
-  };
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<size_t>(upper.nonZeros()));
-  for (int j = 0; j < n; ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(upper, j); it; ++it) {
-      const auto [row, col] = permuted_entry(static_cast<int>(it.row()), j);
-      entries.emplace_back(row, col, 0.0);
-    }
-  Eigen::SparseMatrix<double>& lower = p->lower;
-  lower.resize(n, n);
-  lower.setFromTriplets(entries.begin(), entries.end());
-  lower.makeCompressed();
-
-  auto position = [&](int row, int col) {
-    const auto [r, c] = permuted_entry(row, col);
-    const int* begin = lower.innerIndexPtr() + lower.outerIndexPtr()[c];
-    const int* end = lower.innerIndexPtr() + lower.outerIndexPtr()[c + 1];
-    return static_cast<int>(std::lower_bound(begin, end, r) - lower.innerIndexPtr());
-  };
-  p->scatter.assign(static_cast<size_t>(A.nonZeros()), -1);
-  p->diagonal.resize(static_cast<size_t>(n));
-  for (int j = 0; j < n; ++j) {
-    p->diagonal[static_cast<size_t>(j)] = position(j, j);
-    for (int k = A.outerIndexPtr()[j]; k < A.outerIndexPtr()[j + 1]; ++k) {
-      const int row = A.innerIndexPtr()[k];
-      if (row <= j) p->scatter[static_cast<size_t>(k)] = position(row, j);
-    }
-  }
-  p->source_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + n + 1);
-  p->source_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
-  values.setZero(lower.nonZeros());
+  bool reused = false;
+  std::shared_ptr<const CholeskyPattern> p = shared_pattern(A, common->get(), &reused);
+  values.setZero(p->lower.nonZeros());
   factorized_values.resize(0);
   factorized_status.reset();
-  permuted.resize(n);
-
-  factor = CholmodFactor(analyze_in_order(lower, values.data(), common->get()), *common);
+  permuted.resize(A.cols());
+  factor = CholmodFactor(analyze_in_order(p->lower, values.data(), common->get()), *common);
   pattern = std::move(p);
   ++stats.analyses;
+  if (reused) ++stats.reused_patterns;
 }
 
 void CholeskySolver::Impl::fill(const Eigen::SparseMatrix<double>& A,

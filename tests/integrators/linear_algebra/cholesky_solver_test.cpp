@@ -3,9 +3,13 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <thread>
+#include <vector>
 
+#include "integrators/linear_algebra/cholesky_pattern.hpp"
 #include "integrators/linear_algebra/shifted_factorization.hpp"
 
 namespace xshell::test {
@@ -103,6 +107,62 @@ TEST_CASE("CholeskySolver solves a random SPD system and reuses its analysis") {
   REQUIRE(solver.factorize(C) == FactorizationStatus::PositiveDefinite);
   CHECK((C * solver.solve(b) - b).norm() / b.norm() < 1e-10);
   CHECK(solver.stats().analyses == 2);
+}
+
+// The matrices of this case have patterns of their own (seeds 61-64): the
+// process-wide list of recent patterns holds none of them at the start.
+TEST_CASE("Solvers of one pattern share its analysis and factorize as a solver of its own") {
+  const int n = 300;
+  const Eigen::SparseMatrix<double> A = random_symmetric(n, 4, 0.1, 61);
+  Eigen::SparseMatrix<double> B = A;
+  for (int j = 0; j < n; ++j) B.coeffRef(j, j) += 0.25 * (j % 3);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+
+  CholeskySolver first;
+  REQUIRE(first.factorize(A) == FactorizationStatus::PositiveDefinite);
+  CHECK(first.stats().reused_patterns == 0);
+  CholeskySolver second;
+  REQUIRE(second.factorize(B) == FactorizationStatus::PositiveDefinite);
+  CHECK(second.stats().analyses == 1);
+  CHECK(second.stats().reused_patterns == 1);
+  // The same ordering, hence the same factor: the same solution, bit for bit.
+  const Eigen::VectorXd shared = second.solve(b);
+  REQUIRE(first.factorize(B) == FactorizationStatus::PositiveDefinite);
+  CHECK(first.solve(b) == shared);
+  CHECK((B * shared - b).norm() / b.norm() < 1e-10);
+
+  // kRecentPatterns newer patterns push A's out of the list; the solvers
+  // analysed for it keep it.
+  CholeskySolver other;
+  for (unsigned seed = 62; seed < 62 + xshell::kRecentPatterns; ++seed)
+    REQUIRE(other.factorize(random_symmetric(n, 4, 0.1, seed)) ==
+            FactorizationStatus::PositiveDefinite);
+  CHECK(other.stats().reused_patterns == 0);
+  CholeskySolver late;
+  REQUIRE(late.factorize(A) == FactorizationStatus::PositiveDefinite);
+  CHECK(late.stats().reused_patterns == 0);
+  REQUIRE(second.factorize(A) == FactorizationStatus::PositiveDefinite);
+  CHECK(second.stats().analyses == 1);
+  CHECK(second.solve(b) == late.solve(b));
+}
+
+TEST_CASE("Solvers on several threads analyse and share one new pattern safely") {
+  const int n = 250;
+  const Eigen::SparseMatrix<double> A = random_symmetric(n, 4, 0.1, 71);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+  std::vector<double> residuals(4, 1.0);
+  std::vector<std::thread> threads;
+  for (size_t k = 0; k < residuals.size(); ++k)
+    threads.emplace_back([&, k] {
+      for (int repeat = 0; repeat < 3; ++repeat) {
+        CholeskySolver solver;
+        if (solver.factorize(A) != FactorizationStatus::PositiveDefinite) return;
+        residuals[k] =
+            std::max(repeat == 0 ? 0.0 : residuals[k], (A * solver.solve(b) - b).norm() / b.norm());
+      }
+    });
+  for (std::thread& t : threads) t.join();
+  for (double r : residuals) CHECK(r < 1e-10);
 }
 
 // A sparse matrix and a dense one, the second also shifted.
