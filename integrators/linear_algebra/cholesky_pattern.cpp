@@ -61,6 +61,28 @@ Eigen::SparseMatrix<double> permuted_lower(const Eigen::SparseMatrix<double>& up
   return lower;
 }
 
+// The symbolic factor of the already permuted matrix whose lower triangle
+// is `lower`: natural ordering, no further postordering.
+cholmod_factor* analyze_in_order(Eigen::SparseMatrix<double>& lower, cholmod_common* c) {
+  c->nmethods = 1;
+  c->method[0].ordering = CHOLMOD_NATURAL;
+  c->postorder = 0;
+  cholmod_sparse view = sparse_view(lower, SymmetricStorage::Lower);
+  cholmod_factor* L = nullptr;
+  {
+    const CholmodThreads threads;
+    L = cholmod_analyze(&view, c);
+  }
+  if (L == nullptr) throw std::runtime_error("cholmod_analyze failed");
+  const int* perm = static_cast<const int*>(L->Perm);
+  for (size_t k = 0; k < L->n; ++k)
+    if (perm[k] != static_cast<int>(k)) {
+      cholmod_free_factor(&L, c);
+      throw std::logic_error("cholmod_analyze permuted a matrix given in natural order");
+    }
+  return L;
+}
+
 }  // namespace
 
 bool has_pattern(const CholeskyPattern& pattern, const Eigen::SparseMatrix<double>& A) {
@@ -102,7 +124,14 @@ std::shared_ptr<const CholeskyPattern> analyze_pattern(const Eigen::SparseMatrix
   }
   p->source_outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + n + 1);
   p->source_inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+  p->symbolic = CholmodFactor(analyze_in_order(p->lower, p->common->get()), *p->common);
   return p;
+}
+
+cholmod_factor* copy_symbolic_factor(const CholeskyPattern& pattern, cholmod_common* common) {
+  cholmod_factor* L = cholmod_copy_factor(pattern.symbolic.get(), common);
+  if (L == nullptr) throw std::runtime_error("cholmod_copy_factor failed");
+  return L;
 }
 
 std::shared_ptr<const CholeskyPattern> shared_pattern(const Eigen::SparseMatrix<double>& A,

@@ -7,7 +7,9 @@
 // the damping estimate, IDA's Jacobian and the end game each own one) finds
 // the pattern analysed before in a small process-wide list of the most
 // recent ones, where a new analysis of hourglass's 1e6-entry Hessian took
-// about 30 ms, as long as a factorization.
+// about 30 ms, as long as a factorization. The supernodal structure of the
+// permuted matrix comes with it; each solver copies it into a factor of its
+// own.
 #pragma once
 
 #include <cholmod.h>
@@ -15,6 +17,8 @@
 #include <Eigen/SparseCore>
 #include <memory>
 #include <vector>
+
+#include "integrators/linear_algebra/cholmod_handles.hpp"
 
 namespace xshell {
 
@@ -26,10 +30,17 @@ struct CholeskyPattern {
   std::vector<int> permutation;  // P: row k of P A P^T is row permutation[k] of A
   std::vector<int> scatter;      // input value k -> index in lower, or -1 (lower triangle of A)
   std::vector<int> diagonal;     // unknown j -> index of its diagonal entry in lower
+  // The symbolic factor of `lower` in its natural order (it is permuted
+  // already), in a CHOLMOD context of its own.
+  std::unique_ptr<CholmodCommon> common = std::make_unique<CholmodCommon>();
+  CholmodFactor symbolic;
 };
 
 // True when A (compressed) has the pattern `pattern` was analysed for.
 bool has_pattern(const CholeskyPattern& pattern, const Eigen::SparseMatrix<double>& A);
+
+// A copy of pattern.symbolic in `common`, for a solver to factorize into.
+cholmod_factor* copy_symbolic_factor(const CholeskyPattern& pattern, cholmod_common* common);
 
 // A new analysis of A's pattern (the ordering with `common`'s settings).
 std::shared_ptr<const CholeskyPattern> analyze_pattern(const Eigen::SparseMatrix<double>& A,

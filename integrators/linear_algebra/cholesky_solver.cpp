@@ -56,37 +56,6 @@ struct CholeskySolver::Impl {
   void require_ll_factor() const;
 };
 
-namespace {
-
-// A factor of the already permuted matrix whose lower triangle is `lower`:
-// natural ordering, no further postordering.
-cholmod_factor* analyze_in_order(const Eigen::SparseMatrix<double>& lower, double* values,
-                                 cholmod_common* c) {
-  const int nmethods = c->nmethods, ordering = c->method[0].ordering, postorder = c->postorder;
-  c->nmethods = 1;
-  c->method[0].ordering = CHOLMOD_NATURAL;
-  c->postorder = 0;
-  cholmod_sparse view = sparse_view(lower, values, SymmetricStorage::Lower);
-  cholmod_factor* L = nullptr;
-  {
-    const CholmodThreads threads;
-    L = cholmod_analyze(&view, c);
-  }
-  c->nmethods = nmethods;
-  c->method[0].ordering = ordering;
-  c->postorder = postorder;
-  if (L == nullptr) throw std::runtime_error("cholmod_analyze failed");
-  const int* perm = static_cast<const int*>(L->Perm);
-  for (size_t k = 0; k < L->n; ++k)
-    if (perm[k] != static_cast<int>(k)) {
-      cholmod_free_factor(&L, c);
-      throw std::logic_error("cholmod_analyze permuted a matrix given in natural order");
-    }
-  return L;
-}
-
-}  // namespace
-
 bool CholeskySolver::Impl::analyzed_for(const Eigen::SparseMatrix<double>& A) const {
   return factor && pattern && has_pattern(*pattern, A);
 }
@@ -101,7 +70,7 @@ void CholeskySolver::Impl::analyze(const Eigen::SparseMatrix<double>& A) {
   factorized_values.resize(0);
   factorized_status.reset();
   permuted.resize(A.cols());
-  factor = CholmodFactor(analyze_in_order(p->lower, values.data(), common->get()), *common);
+  factor = CholmodFactor(copy_symbolic_factor(*p, common->get()), *common);
   pattern = std::move(p);
   ++stats.analyses;
   if (reused) ++stats.reused_patterns;
