@@ -4,7 +4,7 @@
 // The symbolic analysis (fill-reducing ordering as CHOLMOD chooses it,
 // supernodal structure) is computed once per pattern and reused by every
 // numeric factorization until a matrix with a different pattern arrives;
-// its ordering is shared with the other solvers of the same pattern
+// it is shared with the other solvers of the same pattern
 // (cholesky_pattern.hpp).
 // Only the upper triangle of the (full, both-triangles) input is read. The
 // solver keeps its own copy of the matrix, already permuted by the
@@ -28,7 +28,7 @@ enum class FactorizationStatus {
 // Counters for benchmarks and tests.
 struct CholeskyStats {
   long analyses = 0;               // symbolic analyses
-  long reused_patterns = 0;        // of which the pattern's part came from another solver's
+  long reused_patterns = 0;        // of which another solver's, of the same pattern, was reused
   long factorizations = 0;         // numeric factorizations attempted (repeats not counted)
   long failed_factorizations = 0;  // of which not positive definite
   long solves = 0;
