@@ -28,23 +28,30 @@ Eigen::SparseMatrix<double> upper_pattern(const Eigen::SparseMatrix<double>& A) 
   return upper;
 }
 
-// CHOLMOD's fill-reducing permutation (with its postordering) for the
-// symmetric matrix whose upper triangle is `upper`.
-std::vector<int> fill_reducing_permutation(Eigen::SparseMatrix<double>& upper, cholmod_common* c) {
-  cholmod_sparse view = sparse_view(upper, SymmetricStorage::Upper);
+// cholmod_analyze of the symmetric matrix stored as `storage` in `m`.
+cholmod_factor* symbolic_analysis(Eigen::SparseMatrix<double>& m, SymmetricStorage storage,
+                                  cholmod_common* c) {
+  cholmod_sparse view = sparse_view(m, storage);
   cholmod_factor* L = nullptr;
   {
     const CholmodThreads threads;
     L = cholmod_analyze(&view, c);
   }
   if (L == nullptr) throw std::runtime_error("cholmod_analyze failed");
+  return L;
+}
+
+// CHOLMOD's fill-reducing permutation (with its postordering) for the
+// symmetric matrix whose upper triangle is `upper`.
+std::vector<int> fill_reducing_permutation(Eigen::SparseMatrix<double>& upper, cholmod_common* c) {
+  cholmod_factor* L = symbolic_analysis(upper, SymmetricStorage::Upper, c);
   const int* perm = static_cast<const int*>(L->Perm);
   std::vector<int> permutation(perm, perm + L->n);
   cholmod_free_factor(&L, c);
   return permutation;
 }
 
-// tril(P A P^T) of the upper triangle `upper` for P = `permutation`.
+// tril(P A P^T) of the upper triangle `upper`, `inverse` the inverse of P.
 Eigen::SparseMatrix<double> permuted_lower(const Eigen::SparseMatrix<double>& upper,
                                            const std::vector<int>& inverse) {
   const int n = static_cast<int>(upper.cols());
@@ -67,13 +74,7 @@ cholmod_factor* analyze_in_order(Eigen::SparseMatrix<double>& lower, cholmod_com
   c->nmethods = 1;
   c->method[0].ordering = CHOLMOD_NATURAL;
   c->postorder = 0;
-  cholmod_sparse view = sparse_view(lower, SymmetricStorage::Lower);
-  cholmod_factor* L = nullptr;
-  {
-    const CholmodThreads threads;
-    L = cholmod_analyze(&view, c);
-  }
-  if (L == nullptr) throw std::runtime_error("cholmod_analyze failed");
+  cholmod_factor* L = symbolic_analysis(lower, SymmetricStorage::Lower, c);
   const int* perm = static_cast<const int*>(L->Perm);
   for (size_t k = 0; k < L->n; ++k)
     if (perm[k] != static_cast<int>(k)) {
