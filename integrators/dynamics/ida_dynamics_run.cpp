@@ -442,6 +442,7 @@ bool DynamicsRun::play_endgame() {
     restart_at(t, 0.0);
     return true;
   }
+  if (polished.converged()) endgame_stable = polished.stable;
   finish(endgame_status(polished), endgame_reason(polished));
   return false;
 }
@@ -457,8 +458,10 @@ DynamicsResult DynamicsRun::final_result() {
   result.energy = objective.energy();
   result.gradient_measure = weighted_max_norm(weights, evaluator.gradient());
   result.kinetic_energy = kinetic(y);
+  // A converged end game tested this state's exact Hessian already.
   if (result.status != SolveStatus::NonFinite)
-    result.stable = is_positive_definite(estimator, objective.hessian());
+    result.stable =
+        endgame_stable ? *endgame_stable : is_positive_definite(estimator, objective.hessian());
   result.factorizations = estimator.stats().factorizations +
                           system.cholesky().stats().factorizations + extra_factorizations;
   result.seconds = seconds_since(start);

@@ -76,6 +76,7 @@ class DynamicsRun {
   Eigen::VectorXd mass;                // M, diagonal, size n
   DampingChoice choice;                // C, and the modes it came from
   long extra_factorizations = 0;       // the end games' factorizations
+  std::optional<bool> endgame_stable;  // a converged end game's stability test, at the final state
   DynamicsSystem system;          // what IDA integrates (after mass and choice: built from them)
   Eigen::VectorXd y;              // the state, [q; v] or q
   Eigen::VectorXd weights;        // gradient weights (change at rebases)

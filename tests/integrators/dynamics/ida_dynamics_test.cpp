@@ -9,6 +9,7 @@
 
 #include "integrators/common/objective_evaluator.hpp"
 #include "integrators/dynamics/ida_system.hpp"
+#include "integrators/linear_algebra/shifted_factorization.hpp"
 #include "integrators/newton/newton.hpp"
 #include "integrators/toy_objectives.hpp"
 
@@ -205,6 +206,26 @@ TEST_CASE("damped dynamics near the column's saddle") {
       REQUIRE(run.result.status == SolveStatus::Converged);
       CHECK_FALSE(run.result.stable);
       CHECK(column.get()[middle] == 0.0);
+    }
+  }
+  SUBCASE("a converged end game's stability test is the run's, on the saddle and off it") {
+    // The run reports the stability the end game's Newton found at the
+    // final state (one factorization less); a fresh factorization there
+    // must agree. The straight column stays on its saddle, the imperfect
+    // one buckles into the minimum.
+    for (double imperfection : {0.0, 1e-4}) {
+      ColumnOptions c;
+      c.imperfection = imperfection;
+      StencilObjective column = make_column(c);
+      DynamicsOptions o = tight(DynamicsForm::SecondOrder, MassModel::Physical);
+      o.escape.enabled = false;
+      const DynamicsRun run = run_dynamics(column, o);
+      INFO("imperfection " << imperfection << ": " << run.result.reason);
+      REQUIRE(run.result.status == SolveStatus::Converged);
+      REQUIRE(run.result.endgame_steps >= 1);
+      CholeskySolver fresh;
+      CHECK(run.result.stable == is_positive_definite(fresh, column.hessian()));
+      CHECK(run.result.stable == (imperfection > 0.0));
     }
   }
   SUBCASE("an exactly straight start stays on the saddle, reported unstable") {
