@@ -294,6 +294,29 @@ bool DynamicsRun::stops_here() {
     endgame = true;
     return true;
   }
+  if (settled_in_stable_basin(at_rest)) {
+    endgame = true;
+    return true;
+  }
+  return false;
+}
+
+// EndgameOptions::rest_check_fall: at rest (second order), a positive
+// definite H (a factorization by the estimator's solver) hands over to the
+// end game as a step of many time constants would: the motion has died out
+// in a stable basin, and the remaining steps only creep to its equilibrium
+// (scary_face from flat spent its last 5 steps there at kinetic energies
+// below 1e-12 of its scale, the gradient measure between 1e-2 and 0.5).
+bool DynamicsRun::settled_in_stable_basin(bool at_rest) {
+  const double fall = options.endgame.rest_check_fall;
+  if (!endgame_on || !second_order || !at_rest || !(fall > 0.0) ||
+      !(report.gradient_measure < rest_check_below))
+    return false;
+  if (is_positive_definite(estimator, objective.hessian())) {
+    rest_check_below = report.gradient_measure / options.endgame.growth;
+    return true;
+  }
+  rest_check_below = fall * report.gradient_measure;
   return false;
 }
 

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -49,6 +50,7 @@ class DynamicsRun {
   void on_integrator_failure(int flag);
   bool step_is_sound(double h);
   bool stops_here();
+  bool settled_in_stable_basin(bool at_rest);
   // Along the motion.
   void refresh_by_distance(double h);
   void rebase_if_due(double h);
@@ -105,6 +107,11 @@ class DynamicsRun {
   // then waits for steps endgame.growth times longer, or a gradient
   // endgame.growth times smaller, before the next (both triggers back off).
   double endgame_backoff = 1.0;
+  // The at-rest end game (EndgameOptions::rest_check_fall) waits for a
+  // gradient measure below this: after a check that found H indefinite, a
+  // fraction of the measure there; after an end game that did not
+  // converge, its start's measure over endgame.growth.
+  double rest_check_below = std::numeric_limits<double>::infinity();
   bool endgame_on = false;  // options.endgame.step_length > 0
 };
 

@@ -295,6 +295,52 @@ TEST_CASE(
   }
 }
 
+TEST_CASE("a run at rest in a stable basin hands over to the end game, whatever its gradient") {
+  // The end game by step length is kept out of reach (step_length 1e12),
+  // so that a hand-over at rest with a gradient above gradient_factor
+  // times the tolerance can only come from EndgameOptions::rest_check_fall.
+  NewtonOptions newton;
+  newton.gradient_tolerance = 1e-10;
+  newton.max_iterations = 500;
+  int handed_over = 0;
+  for (const Toy& toy : toys()) {
+    const Eigen::VectorXd reference =
+        toy.run([&](Objective& o) { REQUIRE(solve_newton(o, newton).converged()); });
+    DynamicsOptions o = tight(DynamicsForm::SecondOrder, MassModel::Physical);
+    o.endgame.step_length = 1e12;
+    std::vector<DynamicsRun> runs;
+    for (double fall : {0.0, 0.1}) {
+      o.endgame.rest_check_fall = fall;
+      runs.emplace_back();
+      const Eigen::VectorXd q =
+          toy.run([&](Objective& obj) { runs.back() = run_dynamics(obj, o); });
+      const DynamicsResult& r = runs.back().result;
+      INFO(toy.name << ", fall " << fall << ": " << r.reason);
+      REQUIRE(r.status == SolveStatus::Converged);
+      CHECK(r.stable);
+      CHECK((q - reference).norm() < 1e-6 * reference.norm());
+    }
+    const DynamicsResult &plain = runs[0].result, &rested = runs[1].result;
+    if (rested.endgame_steps == 0) continue;
+    const std::vector<DynamicsReport>& reports = runs[1].reports;
+    const DynamicsReport& handover =
+        reports[reports.size() - 1 - static_cast<size_t>(rested.endgame_steps)];
+    if (!(handover.gradient_measure > o.endgame.gradient_factor * o.stopping.gradient_tolerance))
+      continue;  // the older trigger's hand-over
+    ++handed_over;
+    INFO(toy.name);
+    CHECK(handover.order > 0);
+    const double scale =
+        std::max(std::abs(reports.front().energy - handover.energy), std::abs(handover.energy));
+    CHECK(handover.kinetic_energy <= o.stopping.kinetic_tolerance * scale);
+    CHECK(rested.iterations < plain.iterations);
+    MESSAGE(toy.name << ": " << plain.iterations << " steps without the end game at rest, "
+                     << rested.iterations << " with it (" << rested.endgame_steps
+                     << " of them Newton), handed over at gradient " << handover.gradient_measure);
+  }
+  CHECK(handed_over >= 1);
+}
+
 TEST_CASE("the overdamped velocity puts the second-order form on its slow manifold") {
   StencilObjective chain = make_taut_chain();
   ObjectiveEvaluator evaluator(chain);
