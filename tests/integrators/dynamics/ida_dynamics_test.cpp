@@ -51,6 +51,14 @@ DynamicsOptions tight(DynamicsForm form, MassModel mass) {
   return options;
 }
 
+// Newton to the toys' equilibria, as tight as tight() asks of the dynamics.
+NewtonOptions reference_newton() {
+  NewtonOptions newton;
+  newton.gradient_tolerance = 1e-10;
+  newton.max_iterations = 500;
+  return newton;
+}
+
 std::string label(const DynamicsOptions& o) {
   return std::string(o.form == DynamicsForm::SecondOrder ? "second order" : "first order") + ", " +
          (o.mass == MassModel::Physical ? "physical mass" : "fictitious mass");
@@ -94,9 +102,7 @@ std::vector<Toy> toys() {
 }  // namespace
 
 TEST_CASE("damped dynamics reaches Newton's equilibria, with energy decreasing") {
-  NewtonOptions newton;
-  newton.gradient_tolerance = 1e-10;
-  newton.max_iterations = 500;
+  const NewtonOptions newton = reference_newton();
   int compared = 0;
   for (const Toy& toy : toys()) {
     const Eigen::VectorXd reference = toy.run([&](Objective& o) {
@@ -299,9 +305,7 @@ TEST_CASE("a run at rest in a stable basin hands over to the end game, whatever 
   // The end game by step length is kept out of reach (step_length 1e12),
   // so that a hand-over at rest with a gradient above gradient_factor
   // times the tolerance can only come from EndgameOptions::rest_check_fall.
-  NewtonOptions newton;
-  newton.gradient_tolerance = 1e-10;
-  newton.max_iterations = 500;
+  const NewtonOptions newton = reference_newton();
   int handed_over = 0;
   for (const Toy& toy : toys()) {
     const Eigen::VectorXd reference =
